@@ -1,0 +1,613 @@
+#include "scene/GltfLoader.h"
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <optional>
+
+#include <spdlog/spdlog.h>
+#include <tiny_gltf.h>
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/matrix.hpp>
+
+#include "scene/MtlMaterials.h"
+#include "scene/SceneError.h"
+#include "scene/TextureLoader.h"
+
+namespace igi {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kMaxNodeDepth = 256;
+
+// ---- Reading through the FileSource -------------------------------------------------------
+
+struct FsContext {
+    FileSource* files;
+    std::string gltfPath;
+    std::string resolve(const std::string& uri) const { return resolveRelative(gltfPath, uri); }
+};
+
+bool fileExists(const std::string& uri, void* user) {
+    const auto* ctx = static_cast<FsContext*>(user);
+    try {
+        return ctx->files->exists(ctx->resolve(uri));
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
+std::string expandPath(const std::string& uri, void*) {
+    return uri;
+}
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& uri,
+                   void* user) {
+    const auto* ctx = static_cast<FsContext*>(user);
+    try {
+        const std::string bytes = ctx->files->read(ctx->resolve(uri));
+        out->assign(bytes.begin(), bytes.end());
+        return true;
+    } catch (const std::exception& e) {
+        if (err) *err += e.what();
+        return false;
+    }
+}
+
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&,
+                    void*) {
+    if (err) *err += "writing is not supported";
+    return false;
+}
+
+// Images are decoded later with OpenImageIO, and only those used as colour textures: keep the
+// encoded bytes.
+bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+    return true;
+}
+
+tinygltf::Model parseGltf(const std::string& path, FileSource& files) {
+    const std::string bytes = files.read(path);
+    FsContext ctx{&files, path};
+    tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &writeWholeFile, &ctx});
+    loader.SetImageLoader(&keepEncodedImage, nullptr);
+    tinygltf::Model model;
+    std::string err, warn;
+    const bool binary = bytes.rfind("glTF", 0) == 0;
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+    const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data,
+                                                         static_cast<unsigned>(bytes.size()), "")
+                           : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
+                                                        static_cast<unsigned>(bytes.size()), "");
+    if (!ok) throw SceneError::inFile(path, "cannot load glTF: " + err);
+    if (!warn.empty()) spdlog::debug("{}: tinygltf: {}", path, warn);
+    return model;
+}
+
+// ---- Small helpers ------------------------------------------------------------------------
+
+double extensionNumber(const tinygltf::ExtensionMap& extensions, const char* extension,
+                       const char* key, double fallback) {
+    auto it = extensions.find(extension);
+    if (it == extensions.end() || !it->second.Has(key)) return fallback;
+    const tinygltf::Value& v = it->second.Get(key);
+    return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+glm::vec3 vec3Of(const std::vector<double>& v, glm::vec3 fallback) {
+    if (v.size() < 3) return fallback;
+    return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+}
+
+std::string extensionForMime(const std::string& mime) {
+    if (mime == "image/png") return ".png";
+    if (mime == "image/jpeg") return ".jpg";
+    if (mime == "image/bmp") return ".bmp";
+    if (mime == "image/gif") return ".gif";
+    return ".png";
+}
+
+// ---- Materials ----------------------------------------------------------------------------
+
+class GltfMaterials {
+  public:
+    GltfMaterials(const std::string& path, const tinygltf::Model& model, SceneAssets& assets)
+        : path_(path), model_(model), assets_(assets) {}
+
+    // Appends every material of the file; returns the scene index of the first.
+    std::uint32_t appendAll() {
+        auto& materials = assets_.scene().materials;
+        const auto base = static_cast<std::uint32_t>(materials.size());
+        for (std::size_t i = 0; i < model_.materials.size(); ++i) {
+            materials.push_back(convert(model_.materials[i], static_cast<int>(i)));
+        }
+        return base;
+    }
+
+  private:
+    Material convert(const tinygltf::Material& gm, int index) {
+        const auto& pbr = gm.pbrMetallicRoughness;
+        Material m;
+        m.name = gm.name.empty() ? std::filesystem::path(path_).stem().string() + "#material" +
+                                       std::to_string(index)
+                                 : gm.name;
+        const glm::vec3 baseColor = glm::max(vec3Of(pbr.baseColorFactor, glm::vec3(1.0f)), 0.0f);
+        m.emission = emission(gm);
+        const double transmission =
+            extensionNumber(gm.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0);
+        if (transmission > 0.5) {
+            m.glass = true;
+            const double ior = extensionNumber(gm.extensions, "KHR_materials_ior", "ior", 1.5);
+            m.ior = ior > 0.0 ? static_cast<float>(ior) : 1.5f;
+        } else if (pbr.metallicFactor > 0.5 && pbr.roughnessFactor < 0.1) {
+            m.reflection = Reflection::Mirror;
+            m.specular = glm::min(baseColor, 1.0f);
+            m.diffuse = glm::vec3(0.0f);
+        } else {
+            m.diffuse = baseColor;
+            if (pbr.baseColorTexture.index >= 0)
+                m.diffuseTexture = colourTexture(pbr.baseColorTexture.index);
+        }
+        conserveEnergy(m, path_ + ": material '" + m.name + "'");
+        return m;
+    }
+
+    // emissiveFactor x KHR_materials_emissive_strength; an emissive texture scales it by its
+    // mean, since igi's emission is one colour per material.
+    glm::vec3 emission(const tinygltf::Material& gm) {
+        const float strength = static_cast<float>(extensionNumber(
+            gm.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0));
+        glm::vec3 e = glm::max(vec3Of(gm.emissiveFactor, glm::vec3(0.0f)) * strength, 0.0f);
+        if (gm.emissiveTexture.index >= 0 && (e.x > 0 || e.y > 0 || e.z > 0)) {
+            e *= textureAverage(gm.emissiveTexture.index);
+        }
+        return e;
+    }
+
+    int imageOf(int textureIndex, const std::string& what) const {
+        if (textureIndex < 0 || textureIndex >= static_cast<int>(model_.textures.size())) {
+            throw SceneError::atPath(path_, "/textures/" + std::to_string(textureIndex),
+                                     what + " refers to a texture that does not exist");
+        }
+        const int image = model_.textures[textureIndex].source;
+        if (image < 0 || image >= static_cast<int>(model_.images.size())) {
+            throw SceneError::atPath(path_, "/textures/" + std::to_string(textureIndex),
+                                     "texture has no valid image source");
+        }
+        const auto& img = model_.images[image];
+        if (img.image.empty()) {
+            throw SceneError::atPath(path_, "/images/" + std::to_string(image),
+                                     "image '" + img.uri + "' not found or unreadable");
+        }
+        return image;
+    }
+
+    // A name whose extension tells OpenImageIO the format, and the key that shares decodes.
+    std::pair<std::string, std::string> imageNameAndKey(int image) const {
+        const auto& img = model_.images[image];
+        if (!img.uri.empty() && img.uri.rfind("data:", 0) != 0) {
+            const std::string file = resolveRelative(path_, img.uri);
+            return {file, file};
+        }
+        const std::string key = path_ + "#/images/" + std::to_string(image);
+        return {key + extensionForMime(img.mimeType), key};
+    }
+
+    int colourTexture(int textureIndex) {
+        const int image = imageOf(textureIndex, "baseColorTexture");
+        const auto [name, key] = imageNameAndKey(image);
+        const auto& bytes = model_.images[image].image;
+        return assets_.textureBytes(key, name, std::string(bytes.begin(), bytes.end()));
+    }
+
+    glm::vec3 textureAverage(int textureIndex) {
+        const int image = imageOf(textureIndex, "emissiveTexture");
+        auto cached = averages_.find(image);
+        if (cached != averages_.end()) return cached->second;
+        const auto& bytes = model_.images[image].image;
+        const Texture t =
+            decodeTexture(imageNameAndKey(image).first, std::string(bytes.begin(), bytes.end()));
+        return averages_[image] = t.average;
+    }
+
+    const std::string& path_;
+    const tinygltf::Model& model_;
+    SceneAssets& assets_;
+    std::map<int, glm::vec3> averages_;
+};
+
+// ---- Accessors ----------------------------------------------------------------------------
+
+class AccessorReader {
+  public:
+    AccessorReader(const std::string& path, const tinygltf::Model& model)
+        : path_(path), model_(model) {}
+
+    // count x components floats; integer components must be normalized (e.g. texcoords).
+    std::vector<float> floats(int index, int type) const {
+        const tinygltf::Accessor& acc = accessor(index);
+        const int components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(type));
+        if (acc.type != type) fail(index, "unexpected accessor type");
+        if (acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !acc.normalized) {
+            fail(index, "expected float or normalized integer components");
+        }
+        std::vector<float> out(acc.count * components, 0.0f);
+        forEachElement(index, [&](std::size_t i, const unsigned char* p) {
+            for (int c = 0; c < components; ++c) out[i * components + c] = component(acc, p, c);
+        });
+        return out;
+    }
+
+    std::vector<std::uint32_t> indices(int index) const {
+        const tinygltf::Accessor& acc = accessor(index);
+        if (acc.type != TINYGLTF_TYPE_SCALAR) fail(index, "indices must be scalars");
+        std::vector<std::uint32_t> out(acc.count, 0);
+        forEachElement(index, [&](std::size_t i, const unsigned char* p) {
+            switch (acc.componentType) {
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                    out[i] = *p;
+                    break;
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+                    out[i] = load<std::uint16_t>(p);
+                    break;
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+                    out[i] = load<std::uint32_t>(p);
+                    break;
+                default:
+                    fail(index, "indices must be unsigned integers");
+            }
+        });
+        return out;
+    }
+
+    std::size_t count(int index) const { return accessor(index).count; }
+
+  private:
+    template <typename T>
+    static T load(const unsigned char* p) {
+        T v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+    }
+
+    [[noreturn]] void fail(int index, const std::string& message) const {
+        throw SceneError::atPath(path_, "/accessors/" + std::to_string(index), message);
+    }
+
+    const tinygltf::Accessor& accessor(int index) const {
+        if (index < 0 || index >= static_cast<int>(model_.accessors.size())) {
+            fail(index, "accessor does not exist");
+        }
+        const auto& acc = model_.accessors[index];
+        if (acc.sparse.isSparse) fail(index, "sparse accessors are not supported");
+        return acc;
+    }
+
+    static float component(const tinygltf::Accessor& acc, const unsigned char* p, int c) {
+        switch (acc.componentType) {
+            case TINYGLTF_COMPONENT_TYPE_FLOAT:
+                return load<float>(p + 4 * c);
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                return p[c] / 255.0f;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+                return load<std::uint16_t>(p + 2 * c) / 65535.0f;
+            case TINYGLTF_COMPONENT_TYPE_BYTE:
+                return std::max(static_cast<signed char>(p[c]) / 127.0f, -1.0f);
+            case TINYGLTF_COMPONENT_TYPE_SHORT:
+                return std::max(load<std::int16_t>(p + 2 * c) / 32767.0f, -1.0f);
+            default:
+                return 0.0f;
+        }
+    }
+
+    // Calls visit(i, bytes of element i) after checking that every element lies inside its
+    // buffer view and buffer. An accessor without a buffer view is all zeros (glTF 2.0).
+    template <typename Visit>
+    void forEachElement(int index, Visit visit) const {
+        const tinygltf::Accessor& acc = accessor(index);
+        if (acc.bufferView < 0 || acc.count == 0) return;
+        if (acc.bufferView >= static_cast<int>(model_.bufferViews.size()))
+            fail(index, "buffer view does not exist");
+        const tinygltf::BufferView& view = model_.bufferViews[acc.bufferView];
+        if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size()))
+            fail(index, "buffer does not exist");
+        const auto& data = model_.buffers[view.buffer].data;
+        const int stride = acc.ByteStride(view);
+        const int elementSize =
+            tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(acc.componentType)) *
+            tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(acc.type));
+        if (stride <= 0 || elementSize <= 0) fail(index, "invalid component type or stride");
+        const std::size_t start = view.byteOffset + acc.byteOffset;
+        const std::size_t end =
+            start + static_cast<std::size_t>(stride) * (acc.count - 1) + elementSize;
+        if (end > view.byteOffset + view.byteLength || end > data.size()) {
+            fail(index, "accessor reaches past the end of its buffer");
+        }
+        for (std::size_t i = 0; i < acc.count; ++i) visit(i, data.data() + start + i * stride);
+    }
+
+    const std::string& path_;
+    const tinygltf::Model& model_;
+};
+
+// ---- Geometry -----------------------------------------------------------------------------
+
+glm::dmat4 localMatrix(const tinygltf::Node& node) {
+    if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());
+    glm::dmat4 m(1.0);
+    if (node.translation.size() == 3)
+        m = glm::translate(m, glm::make_vec3(node.translation.data()));
+    if (node.rotation.size() == 4) {
+        const auto& r = node.rotation;  // glTF stores x, y, z, w
+        m = m * glm::mat4_cast(glm::normalize(glm::dquat(r[3], r[0], r[1], r[2])));
+    }
+    if (node.scale.size() == 3) m = glm::scale(m, glm::make_vec3(node.scale.data()));
+    return m;
+}
+
+// Triangle corner indices of a primitive in list, strip or fan mode.
+std::vector<glm::uvec3> assembleTriangles(int mode, const std::vector<std::uint32_t>& idx) {
+    std::vector<glm::uvec3> tris;
+    const std::size_t n = idx.size();
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+        for (std::size_t i = 0; i + 2 < n; i += 3)
+            tris.emplace_back(idx[i], idx[i + 1], idx[i + 2]);
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        for (std::size_t i = 0; i + 2 < n; ++i) {
+            if (i % 2 == 0) {
+                tris.emplace_back(idx[i], idx[i + 1], idx[i + 2]);
+            } else {
+                tris.emplace_back(idx[i + 1], idx[i], idx[i + 2]);
+            }
+        }
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        for (std::size_t i = 1; i + 1 < n; ++i) tris.emplace_back(idx[0], idx[i], idx[i + 1]);
+    }
+    return tris;
+}
+
+class GltfFlattener {
+  public:
+    GltfFlattener(const std::string& path, const tinygltf::Model& model, std::uint32_t materialBase,
+                  SceneAssets& assets, Mesh& mesh, std::vector<PointLight>& lights)
+        : path_(path),
+          model_(model),
+          accessors_(path, model),
+          materialBase_(materialBase),
+          assets_(assets),
+          mesh_(mesh),
+          lights_(lights) {
+        for (const auto& m : model.meshes) {
+            for (const auto& p : m.primitives) {
+                withNormals_ = withNormals_ || p.attributes.count("NORMAL") > 0;
+                withUvs_ = withUvs_ || p.attributes.count("TEXCOORD_0") > 0;
+            }
+        }
+    }
+
+    void run() {
+        for (int root : rootNodes()) visit(root, glm::dmat4(1.0), 0);
+    }
+
+  private:
+    std::vector<int> rootNodes() const {
+        const int scene =
+            model_.defaultScene >= 0 ? model_.defaultScene : (model_.scenes.empty() ? -1 : 0);
+        if (scene >= 0 && scene < static_cast<int>(model_.scenes.size()))
+            return model_.scenes[scene].nodes;
+        // No scene: every node that is nobody's child.
+        std::vector<bool> isChild(model_.nodes.size(), false);
+        for (const auto& n : model_.nodes) {
+            for (int c : n.children) {
+                if (c >= 0 && c < static_cast<int>(isChild.size())) isChild[c] = true;
+            }
+        }
+        std::vector<int> roots;
+        for (std::size_t i = 0; i < isChild.size(); ++i) {
+            if (!isChild[i]) roots.push_back(static_cast<int>(i));
+        }
+        return roots;
+    }
+
+    void visit(int index, const glm::dmat4& parent, int depth) {
+        const std::string where = "/nodes/" + std::to_string(index);
+        if (index < 0 || index >= static_cast<int>(model_.nodes.size())) {
+            throw SceneError::atPath(path_, where, "node does not exist");
+        }
+        if (depth > kMaxNodeDepth)
+            throw SceneError::atPath(path_, where, "node hierarchy too deep (a cycle?)");
+        const tinygltf::Node& node = model_.nodes[index];
+        const glm::dmat4 world = parent * localMatrix(node);
+        if (node.mesh >= 0) addMesh(node.mesh, world);
+        addLight(node, world, where);
+        for (int child : node.children) visit(child, world, depth + 1);
+    }
+
+    void addLight(const tinygltf::Node& node, const glm::dmat4& world, const std::string& where) {
+        auto ext = node.extensions.find("KHR_lights_punctual");
+        if (ext == node.extensions.end() || !ext->second.Has("light")) return;
+        const int index = ext->second.Get("light").GetNumberAsInt();
+        if (index < 0 || index >= static_cast<int>(model_.lights.size())) {
+            throw SceneError::atPath(
+                path_, where,
+                "KHR_lights_punctual light " + std::to_string(index) + " does not exist");
+        }
+        const tinygltf::Light& gl = model_.lights[index];
+        PointLight light;
+        light.name = gl.name.empty() ? "light" + std::to_string(index) : gl.name;
+        if (gl.type == "directional") {
+            spdlog::warn("{}: directional light '{}' is not supported: ignored", path_, light.name);
+            return;
+        }
+        if (gl.type == "spot") {
+            spdlog::warn("{}: spot light '{}' is treated as a point light", path_, light.name);
+        }
+        light.position = glm::vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+        // glTF gives candela; igi reads the number as a power and spreads it over the sphere
+        // (docs/SCENE_FORMAT.md, "glTF").
+        const glm::vec3 colour = glm::max(vec3Of(gl.color, glm::vec3(1.0f)), 0.0f);
+        light.intensity = colour * static_cast<float>(std::max(gl.intensity, 0.0) / (4.0 * kPi));
+        lights_.push_back(light);
+    }
+
+    void addMesh(int meshIndex, const glm::dmat4& world) {
+        if (meshIndex >= static_cast<int>(model_.meshes.size())) {
+            throw SceneError::atPath(path_, "/meshes/" + std::to_string(meshIndex),
+                                     "mesh does not exist");
+        }
+        const auto& primitives = model_.meshes[meshIndex].primitives;
+        for (std::size_t p = 0; p < primitives.size(); ++p) {
+            addPrimitive(
+                primitives[p], world,
+                "/meshes/" + std::to_string(meshIndex) + "/primitives/" + std::to_string(p));
+        }
+    }
+
+    std::uint32_t materialId(int material) {
+        if (material >= 0 && material < static_cast<int>(model_.materials.size())) {
+            return materialBase_ + static_cast<std::uint32_t>(material);
+        }
+        if (!defaultId_) {
+            defaultId_ = static_cast<std::uint32_t>(assets_.scene().materials.size());
+            assets_.scene().materials.push_back(defaultMaterial());
+        }
+        return *defaultId_;
+    }
+
+    int attribute(const tinygltf::Primitive& prim, const char* name) const {
+        auto it = prim.attributes.find(name);
+        return it == prim.attributes.end() ? -1 : it->second;
+    }
+
+    void addPrimitive(const tinygltf::Primitive& prim, const glm::dmat4& world,
+                      const std::string& where) {
+        const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+            spdlog::warn("{}: {}: points and lines are not rendered", path_, where);
+            return;
+        }
+        const int posAccessor = attribute(prim, "POSITION");
+        if (posAccessor < 0) throw SceneError::atPath(path_, where, "primitive has no POSITION");
+        const std::vector<float> pos = accessors_.floats(posAccessor, TINYGLTF_TYPE_VEC3);
+        const std::size_t count = pos.size() / 3;
+        for (float v : pos) {
+            if (!std::isfinite(v)) throw SceneError::atPath(path_, where, "POSITION is not finite");
+        }
+        std::vector<std::uint32_t> idx;
+        if (prim.indices >= 0) {
+            idx = accessors_.indices(prim.indices);
+        } else {
+            idx.resize(count);
+            for (std::size_t i = 0; i < count; ++i) idx[i] = static_cast<std::uint32_t>(i);
+        }
+        for (std::uint32_t i : idx) {
+            if (i >= count)
+                throw SceneError::atPath(path_, where,
+                                         "index " + std::to_string(i) + " is out of range");
+        }
+        const int nAcc = attribute(prim, "NORMAL");
+        const int tAcc = attribute(prim, "TEXCOORD_0");
+        Attributes attr{
+            pos, nAcc >= 0 ? accessors_.floats(nAcc, TINYGLTF_TYPE_VEC3) : std::vector<float>(),
+            tAcc >= 0 ? accessors_.floats(tAcc, TINYGLTF_TYPE_VEC2) : std::vector<float>()};
+        if (!attr.normals.empty() && attr.normals.size() != pos.size())
+            throw SceneError::atPath(path_, where, "NORMAL count differs from POSITION");
+        if (!attr.uvs.empty() && attr.uvs.size() / 2 != count)
+            throw SceneError::atPath(path_, where, "TEXCOORD_0 count differs from POSITION");
+        emit(assembleTriangles(mode, idx), attr, world, materialId(prim.material));
+    }
+
+    struct Attributes {
+        std::vector<float> positions, normals, uvs;
+    };
+
+    // Appends the triangles, transformed to the file's space. A primitive without normals in a
+    // mesh that has them is flat-shaded (glTF's rule): its triangles get vertices of their own.
+    void emit(const std::vector<glm::uvec3>& tris, const Attributes& a, const glm::dmat4& world,
+              std::uint32_t material) {
+        const glm::mat4 m(world);
+        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
+        const bool flip = glm::determinant(glm::mat3(m)) < 0.0f;
+        const bool flat = withNormals_ && a.normals.empty();
+        const auto base = static_cast<std::uint32_t>(mesh_.positions.size());
+        auto pushVertex = [&](std::uint32_t i, glm::vec3 flatNormal) {
+            mesh_.positions.push_back(
+                glm::vec3(m * glm::vec4(a.positions[3 * i], a.positions[3 * i + 1],
+                                        a.positions[3 * i + 2], 1.0f)));
+            if (withNormals_) {
+                glm::vec3 n = flat
+                                  ? flatNormal
+                                  : normalMatrix * glm::vec3(a.normals[3 * i], a.normals[3 * i + 1],
+                                                             a.normals[3 * i + 2]);
+                const float len = glm::length(n);
+                mesh_.normals.push_back(len > 0.0f && std::isfinite(len) ? n / len : flatNormal);
+            }
+            // glTF's v runs down the image, igi's (OBJ's) up.
+            if (withUvs_)
+                mesh_.uvs.push_back(a.uvs.empty()
+                                        ? glm::vec2(0.0f)
+                                        : glm::vec2(a.uvs[2 * i], 1.0f - a.uvs[2 * i + 1]));
+        };
+        if (!flat) {
+            for (std::size_t i = 0; i < a.positions.size() / 3; ++i)
+                pushVertex(static_cast<std::uint32_t>(i), glm::vec3(0, 0, 1));
+        }
+        for (const glm::uvec3& t : tris) {
+            glm::uvec3 out = t + glm::uvec3(base);
+            if (flat) {
+                const auto first = static_cast<std::uint32_t>(mesh_.positions.size());
+                const glm::vec3 n = faceNormal(a, t, m, flip);
+                for (int c = 0; c < 3; ++c) pushVertex(t[c], n);
+                out = glm::uvec3(first, first + 1, first + 2);
+            }
+            if (flip) std::swap(out.y, out.z);
+            mesh_.triangles.push_back(out);
+            mesh_.materialIds.push_back(material);
+        }
+    }
+
+    static glm::vec3 faceNormal(const Attributes& a, glm::uvec3 t, const glm::mat4& m, bool flip) {
+        auto p = [&](std::uint32_t i) {
+            return glm::vec3(m * glm::vec4(a.positions[3 * i], a.positions[3 * i + 1],
+                                           a.positions[3 * i + 2], 1.0f));
+        };
+        glm::vec3 n = glm::cross(p(t.y) - p(t.x), p(t.z) - p(t.x));
+        if (flip) n = -n;
+        const float len = glm::length(n);
+        return len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0, 0, 1);
+    }
+
+    const std::string& path_;
+    const tinygltf::Model& model_;
+    AccessorReader accessors_;
+    std::uint32_t materialBase_;
+    SceneAssets& assets_;
+    Mesh& mesh_;
+    std::vector<PointLight>& lights_;
+    bool withNormals_ = false;
+    bool withUvs_ = false;
+    std::optional<std::uint32_t> defaultId_;
+};
+
+}  // namespace
+
+void loadGltf(const std::string& path, SceneAssets& assets, Mesh& mesh,
+              std::vector<PointLight>& lights) {
+    const tinygltf::Model model = parseGltf(path, assets.files());
+    const std::uint32_t base = GltfMaterials(path, model, assets).appendAll();
+    GltfFlattener(path, model, base, assets, mesh, lights).run();
+    spdlog::debug("{}: {} triangles, {} materials, {} lights", path, mesh.triangles.size(),
+                  model.materials.size(), lights.size());
+}
+
+}  // namespace igi

@@ -1,0 +1,38 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+namespace igi {
+
+/// How a material reflects specularly, besides its Lambertian part.
+enum class Reflection : std::uint8_t {
+    None,    ///< purely diffuse
+    Glossy,  ///< a Phong lobe of weight `specular` and exponent `phongExponent`
+    Mirror,  ///< perfect mirror of reflectance `specular`
+};
+
+/// A surface material as plain data. The renderer interprets it as up to three BSDF
+/// components: Lambertian (`diffuse`), specular reflection (`reflection`) and, for glass, a
+/// dielectric interface (Fresnel reflection and refraction) that replaces the other two.
+struct Material {
+    std::string name;
+    glm::vec3 diffuse{0.8f};   ///< Kd: Lambertian albedo, multiplied by the texture when present
+    int diffuseTexture = -1;   ///< index into Scene::textures, or -1
+    glm::vec3 specular{0.0f};  ///< Ks: mirror reflectance, or the weight of the glossy lobe
+    float phongExponent = 0;   ///< Ns, for Reflection::Glossy
+    Reflection reflection = Reflection::None;
+    bool glass = false;             ///< dielectric: diffuse and specular are ignored
+    float ior = 1.5f;               ///< Ni, index of refraction of glass
+    glm::vec3 transmittance{1.0f};  ///< tint of light refracted through glass
+    glm::vec3 emission{0.0f};       ///< Ke: radiance emitted on the front (counter-clockwise) side
+
+    bool isEmissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
+    /// Mirrors and glass: surfaces on which no diffuse VPL is stored and at which caustic
+    /// photons are aimed.
+    bool isSpecular() const { return glass || reflection == Reflection::Mirror; }
+};
+
+}  // namespace igi

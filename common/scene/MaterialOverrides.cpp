@@ -1,0 +1,59 @@
+#include <spdlog/spdlog.h>
+
+#include "scene/MtlMaterials.h"
+#include "scene/SceneSections.h"
+
+namespace igi {
+
+namespace {
+
+void applyType(const JsonNode& node, Material& m) {
+    const std::string type = node.choice({"diffuse", "glossy", "mirror", "glass"});
+    m.glass = type == "glass";
+    m.reflection = type == "glossy"   ? Reflection::Glossy
+                   : type == "mirror" ? Reflection::Mirror
+                                      : Reflection::None;
+}
+
+void apply(const JsonNode& node, const std::optional<int>& texture, Material& m) {
+    if (auto v = node.find("type")) applyType(*v, m);
+    // Albedos and tints are fractions in [0, 1] per channel.
+    if (auto v = node.find("diffuse")) m.diffuse = v->rgb(NumberRange::closed(0, 1));
+    if (auto v = node.find("specular")) m.specular = v->rgb(NumberRange::closed(0, 1));
+    if (auto v = node.find("phong_exponent")) m.phongExponent = v->real(NumberRange::atLeast(0));
+    if (auto v = node.find("ior")) m.ior = v->real(NumberRange::above(0));
+    if (auto v = node.find("transmittance")) m.transmittance = v->rgb(NumberRange::closed(0, 1));
+    // Radiance emitted from the front (counter-clockwise) side.
+    if (auto v = node.find("emission")) m.emission = v->rgb(NumberRange::atLeast(0));
+    if (texture) m.diffuseTexture = *texture;
+}
+
+std::optional<int> overrideTexture(const JsonNode& node, SceneAssets& assets) {
+    auto v = node.find("texture");
+    if (!v) return std::nullopt;
+    const std::string written = v->string();
+    // Relative to the scene file.
+    const std::optional<int> index = assets.textureFile(resolveRelative("", written));
+    if (!index) v->fail("texture '" + written + "' not found");
+    return index;
+}
+
+}  // namespace
+
+void applyMaterialOverrides(const JsonNode& node, SceneAssets& assets) {
+    for (const auto& [name, value] : node.members()) {
+        value.checkKeys({"type", "diffuse", "specular", "phong_exponent", "ior", "transmittance",
+                         "emission", "texture"});
+        bool found = false;
+        for (const Material& m : assets.scene().materials) found = found || m.name == name;
+        if (!found) value.fail("no loaded mesh has a material named '" + name + "'");
+        const std::optional<int> texture = overrideTexture(value, assets);
+        for (Material& m : assets.scene().materials) {
+            if (m.name != name) continue;
+            apply(value, texture, m);
+            conserveEnergy(m, value.file() + ": " + value.path());
+        }
+    }
+}
+
+}  // namespace igi

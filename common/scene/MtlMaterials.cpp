@@ -1,0 +1,149 @@
+#include "scene/MtlMaterials.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+#include <spdlog/spdlog.h>
+
+#include "scene/ObjText.h"
+#include "scene/SceneError.h"
+#include "scene/TextureLoader.h"
+
+namespace igi {
+
+namespace {
+
+// Above this Phong exponent a lobe is narrower than a pixel at any sensible resolution:
+// treat it as a mirror (the Cornell sphere's mirror ball says Ns 1000).
+constexpr float kMirrorPhongExponent = 1000.0f;
+constexpr float kDefaultGlassIor = 1.5f;
+
+glm::vec3 rgb(const tinyobj::real_t* c) {
+    glm::vec3 v(static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2]));
+    // tinyobjloader reads what it cannot parse as 0; negative colours mean nothing.
+    return glm::max(v, glm::vec3(0.0f));
+}
+
+float maxComponent(glm::vec3 v) {
+    return std::max({v.x, v.y, v.z});
+}
+
+void applyIllum(const tinyobj::material_t& mtl, const std::string& where, Material& m) {
+    switch (mtl.illum) {
+        case 3:  // reflection on, ray traced
+        case 5:  // reflection with Fresnel
+            m.reflection = Reflection::Mirror;
+            return;
+        case 4:  // glass, ray-traced reflection
+        case 6:  // refraction
+        case 7:  // refraction with Fresnel
+            m.glass = true;
+            // Tf is not used: exporters write it inconsistently (the Cornell sphere's clear
+            // glass says Tf 0.1); a scene file can set "transmittance".
+            if (mtl.ior > 1.0f) {
+                m.ior = static_cast<float>(mtl.ior);
+            } else {
+                spdlog::warn("{}: glass without a usable Ni ({}): using an index of {}", where,
+                             mtl.ior, kDefaultGlassIor);
+                m.ior = kDefaultGlassIor;
+            }
+            return;
+        default:
+            // illum 2 (highlights on) is what exporters write for everything: a glossy lobe
+            // only if Ks says so.
+            if (mtl.illum == 2 && maxComponent(m.specular) > 0.0f) {
+                m.reflection = m.phongExponent >= kMirrorPhongExponent ? Reflection::Mirror
+                                                                       : Reflection::Glossy;
+            }
+            return;
+    }
+}
+
+std::string slashes(std::string name) {
+    std::replace(name.begin(), name.end(), '\\', '/');
+    return name;
+}
+
+}  // namespace
+
+FileSourceMtlReader::FileSourceMtlReader(FileSource& files, std::string objPath)
+    : files_(files), objPath_(std::move(objPath)) {}
+
+bool FileSourceMtlReader::operator()(const std::string& matId,
+                                     std::vector<tinyobj::material_t>* materials,
+                                     std::map<std::string, int>* matMap, std::string* warn,
+                                     std::string* err) {
+    try {
+        const auto path = locateFile(files_, resolveRelative(objPath_, slashes(matId)));
+        if (!path) {
+            missing_.push_back(matId);
+            return false;
+        }
+        const std::string& text = texts_[*path] = files_.read(*path);
+        std::istringstream stream(text);
+        tinyobj::LoadMtl(matMap, materials, &stream, warn, err);
+        materialFiles_.resize(materials->size(), *path);
+        libraries_.push_back(*path);
+        return true;
+    } catch (const std::exception& e) {
+        // Never let an exception cross tinyobjloader's frames.
+        missing_.push_back(matId);
+        if (err) *err += e.what();
+        return false;
+    }
+}
+
+Material defaultMaterial() {
+    Material m;
+    m.name = "default";
+    m.diffuse = glm::vec3(0.8f);
+    return m;
+}
+
+void conserveEnergy(Material& m, const std::string& where) {
+    if (m.glass) return;
+    const glm::vec3 total =
+        m.diffuse + (m.reflection == Reflection::None ? glm::vec3(0.0f) : m.specular);
+    const float peak = maxComponent(total);
+    if (peak <= 1.0f) return;
+    spdlog::warn("{}: diffuse + specular reflects {:.3g} > 1 of the light: scaled down", where,
+                 peak);
+    m.diffuse /= peak;
+    m.specular /= peak;
+}
+
+Material materialFromMtl(const tinyobj::material_t& mtl, const std::string& mtlPath,
+                         const std::string& mtlText, SceneAssets& assets) {
+    const std::string where = mtlPath + ": material '" + mtl.name + "'";
+    Material m;
+    m.name = mtl.name;
+    m.diffuse = rgb(mtl.diffuse);
+    m.specular = rgb(mtl.specular);
+    m.emission = rgb(mtl.emission);
+    m.phongExponent = std::max(0.0f, static_cast<float>(mtl.shininess));
+    applyIllum(mtl, where, m);
+    conserveEnergy(m, where);
+
+    if (!mtl.diffuse_texname.empty()) {
+        const std::string name = slashes(mtl.diffuse_texname);
+        const std::string path = resolveRelative(mtlPath, name);
+        std::optional<int> texture;
+        try {
+            texture = assets.textureFile(path);
+        } catch (const SceneError& e) {
+            // A texture that exists but does not decode: say which statement wanted it.
+            throw SceneError::atLine(mtlPath, mtlLine(mtlText, mtl.name, "map_Kd"), e.what());
+        }
+        if (!texture) {
+            throw SceneError::atLine(
+                mtlPath, mtlLine(mtlText, mtl.name, "map_Kd"),
+                "texture '" + name + "' not found (looked for '" + path + "')");
+        }
+        m.diffuseTexture = *texture;
+    }
+    return m;
+}
+
+}  // namespace igi

@@ -1,0 +1,59 @@
+#pragma once
+
+// MTL materials: reading MTL files through a FileSource for tinyobjloader, and mapping the
+// MTL statements to igi::Material (docs/SCENE_FORMAT.md, "OBJ and MTL").
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <tiny_obj_loader.h>
+
+#include "scene/FileSource.h"
+#include "scene/Material.h"
+#include "scene/SceneAssets.h"
+
+namespace igi {
+
+/// Serves `mtllib` statements from a FileSource and remembers, for error messages, which MTL
+/// file each material came from and what it said. It never throws (tinyobjloader calls it);
+/// libraries it cannot read are listed in missing().
+class FileSourceMtlReader : public tinyobj::MaterialReader {
+  public:
+    FileSourceMtlReader(FileSource& files, std::string objPath);
+
+    bool operator()(const std::string& matId, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* matMap, std::string* warn,
+                    std::string* err) override;
+
+    /// Library names, as the OBJ wrote them, that could not be read.
+    const std::vector<std::string>& missing() const { return missing_; }
+    /// Names of the libraries that were read, relative to the scene file.
+    const std::vector<std::string>& libraries() const { return libraries_; }
+    /// The MTL file (relative to the scene file) of each material, by index.
+    const std::vector<std::string>& materialFiles() const { return materialFiles_; }
+    const std::string& text(const std::string& mtlPath) const { return texts_.at(mtlPath); }
+
+  private:
+    FileSource& files_;
+    std::string objPath_;
+    std::vector<std::string> missing_;
+    std::vector<std::string> libraries_;
+    std::vector<std::string> materialFiles_;
+    std::map<std::string, std::string> texts_;
+};
+
+/// Maps one MTL material to a Material, loading its map_Kd texture through `assets`.
+/// Throws SceneError naming the MTL file and line when the texture does not exist.
+Material materialFromMtl(const tinyobj::material_t& mtl, const std::string& mtlPath,
+                         const std::string& mtlText, SceneAssets& assets);
+
+/// The grey diffuse material of faces that name none.
+Material defaultMaterial();
+
+/// Scales diffuse and specular down so that no channel reflects more than it receives
+/// (max over channels of Kd + Ks <= 1), with one warning naming `where`. Glass is left alone
+/// (its diffuse and specular are not used).
+void conserveEnergy(Material& material, const std::string& where);
+
+}  // namespace igi

@@ -1,0 +1,92 @@
+#include "scene/RenderSettingsJson.h"
+
+#include "scene/JsonReader.h"
+
+namespace igi {
+
+namespace {
+
+// A pair of small integers such as "interleave": [n, m].
+void readPair(const JsonNode& node, std::int64_t lo, std::int64_t hi, int& x, int& y) {
+    const auto e = node.elements(2);
+    x = static_cast<int>(e[0].integer(lo, hi));
+    y = static_cast<int>(e[1].integer(lo, hi));
+}
+
+void readInt(const JsonNode& section, const char* key, std::int64_t lo, std::int64_t hi, int& out) {
+    if (auto v = section.find(key)) out = static_cast<int>(v->integer(lo, hi));
+}
+
+void readFloat(const JsonNode& section, const char* key, NumberRange range, float& out) {
+    if (auto v = section.find(key)) out = v->real(range);
+}
+
+void readIntegrator(const JsonNode& section, RenderSettings& s) {
+    if (auto v = section.find("integrator")) {
+        s.integrator =
+            v->choice({"igi", "path"}) == "igi" ? IntegratorKind::Igi : IntegratorKind::Path;
+    }
+}
+
+// Interleaving, direct light, VPLs and their clamp.
+void readIgiLighting(const JsonNode& section, RenderSettings& s) {
+    // "interleave": [n, m] sets of VPLs and photons, 1..16 each.
+    if (auto v = section.find("interleave")) readPair(*v, 1, 16, s.interleaveX, s.interleaveY);
+    // Shadow rays towards points sampled on the lights, per pixel.
+    readInt(section, "direct_samples", 0, 256, s.directSamples);
+    // Light paths per set; 0 derives them from indirect_vpls.
+    readInt(section, "vpl_paths", 0, 100000, s.vplPaths);
+    readInt(section, "indirect_vpls", 0, 100000, s.indirectVpls);
+    // Vertices of a light path, the one on the light included.
+    readInt(section, "max_light_path_length", 1, 64, s.maxLightPathLength);
+    // Fraction of the scene's bounding-box diagonal.
+    readFloat(section, "clamp_distance", NumberRange::closedOpen(0, 1), s.clampDistance);
+}
+
+void readCausticsAndEyePaths(const JsonNode& section, RenderSettings& s) {
+    readInt(section, "caustic_photons", 0, 10000000, s.causticPhotons);
+    // Gather radius, a fraction of the scene's bounding-box diagonal.
+    readFloat(section, "caustic_radius", NumberRange::open(0, 1), s.causticRadius);
+    // Specular bounces followed from the eye.
+    readInt(section, "max_eye_depth", 0, 64, s.maxEyeDepth);
+}
+
+void readFilterAndOutput(const JsonNode& section, RenderSettings& s) {
+    // Discontinuity buffer size; 0 means the interleaving size.
+    if (auto v = section.find("filter")) readPair(*v, 0, 31, s.filterX, s.filterY);
+    // Relative depth difference beyond which neighbours are not averaged.
+    readFloat(section, "filter_depth_threshold", NumberRange::above(0), s.filterDepthThreshold);
+    // Cosine between normals below which neighbours are not averaged.
+    readFloat(section, "filter_normal_threshold", NumberRange::closed(-1, 1),
+              s.filterNormalThreshold);
+    if (auto v = section.find("accumulate")) s.accumulate = v->boolean();
+}
+
+void readPathTracerAndScheduling(const JsonNode& section, RenderSettings& s) {
+    readInt(section, "path_samples", 1, 65536, s.pathSamples);
+    readInt(section, "max_path_length", 1, 1024, s.maxPathLength);
+    readInt(section, "tile_size", 1, 1024, s.tileSize);
+    if (auto v = section.find("seed")) s.seed = v->unsignedInteger();
+}
+
+}  // namespace
+
+void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& settings,
+                             const std::string& file, const std::string& jsonPathPrefix) {
+    const JsonNode section(json, file, jsonPathPrefix);
+    section.checkKeys({"integrator", "interleave", "direct_samples", "vpl_paths", "indirect_vpls",
+                       "max_light_path_length", "clamp_distance", "caustic_photons",
+                       "caustic_radius", "max_eye_depth", "filter", "filter_depth_threshold",
+                       "filter_normal_threshold", "accumulate", "path_samples", "max_path_length",
+                       "tile_size", "seed"});
+    // Read into a copy so that a failure leaves `settings` untouched.
+    RenderSettings s = settings;
+    readIntegrator(section, s);
+    readIgiLighting(section, s);
+    readCausticsAndEyePaths(section, s);
+    readFilterAndOutput(section, s);
+    readPathTracerAndScheduling(section, s);
+    settings = s;
+}
+
+}  // namespace igi

@@ -1,0 +1,67 @@
+#include "scene/RenderSettingsJson.h"
+
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include "scene/TestScenes.h"
+
+namespace igi {
+namespace {
+
+TEST(RenderSettingsJson, AbsentKeysKeepTheirValue) {
+    RenderSettings s;
+    s.tileSize = 7;
+    applyRenderSettingsJson(nlohmann::json::parse(R"({"direct_samples": 2, "integrator": "igi"})"),
+                            s, "f.json", "/render");
+    EXPECT_EQ(s.directSamples, 2);
+    EXPECT_EQ(s.tileSize, 7);
+    EXPECT_EQ(s.integrator, IntegratorKind::Igi);
+}
+
+TEST(RenderSettingsJson, ErrorsUseTheGivenFileAndPrefix) {
+    RenderSettings s;
+    auto apply = [&](const char* text) {
+        return test::sceneErrorOf(
+            [&] { applyRenderSettingsJson(nlohmann::json::parse(text), s, "cli", "/override"); });
+    };
+    EXPECT_EQ(apply(R"({"interleave": [0, 3]})"),
+              "cli: /override/interleave/0: must be in [1, 16], got 0");
+    EXPECT_EQ(apply(R"({"interleave": [3]})"),
+              "cli: /override/interleave: expected an array of 2 elements, got 1");
+    EXPECT_EQ(apply(R"({"filter": [32, 1]})"),
+              "cli: /override/filter/0: must be in [0, 31], got 32");
+    EXPECT_EQ(apply(R"({"clamp_distance": 1})"),
+              "cli: /override/clamp_distance: must be in [0, 1), got 1");
+    EXPECT_EQ(apply(R"({"caustic_radius": 0})"),
+              "cli: /override/caustic_radius: must be in (0, 1), got 0");
+    EXPECT_EQ(apply(R"({"filter_normal_threshold": -1.5})"),
+              "cli: /override/filter_normal_threshold: must be in [-1, 1], got -1.5");
+    EXPECT_EQ(apply(R"({"filter_depth_threshold": 0})"),
+              "cli: /override/filter_depth_threshold: must be in (0, inf], got 0");
+    EXPECT_EQ(apply(R"({"seed": -1})"), "cli: /override/seed: must not be negative, got -1");
+    EXPECT_EQ(apply(R"({"max_path_length": 2000})"),
+              "cli: /override/max_path_length: must be in [1, 1024], got 2000");
+    EXPECT_EQ(apply(R"({"caustic_photons": 10000001})"),
+              "cli: /override/caustic_photons: must be in [0, 10000000], got 10000001");
+    EXPECT_EQ(apply(R"({"accumulate": 1})"),
+              "cli: /override/accumulate: expected true or false, got 1");
+    EXPECT_EQ(apply("[]"), "cli: /override: expected an object, got array");
+}
+
+TEST(RenderSettingsJson, AFailureLeavesTheSettingsUntouched) {
+    RenderSettings s;
+    EXPECT_THROW(applyRenderSettingsJson(
+                     nlohmann::json::parse(R"({"direct_samples": 9, "tile_size": 0})"), s, "f", ""),
+                 SceneError);
+    EXPECT_EQ(s, RenderSettings{});
+}
+
+TEST(RenderSettingsJson, LargestSeed) {
+    RenderSettings s;
+    applyRenderSettingsJson(nlohmann::json::parse(R"({"seed": 18446744073709551615})"), s, "f", "");
+    EXPECT_EQ(s.seed, 18446744073709551615ull);
+}
+
+}  // namespace
+}  // namespace igi

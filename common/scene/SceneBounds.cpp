@@ -1,0 +1,21 @@
+#include "scene/SceneBounds.h"
+
+namespace igi {
+
+Bounds3 worldBounds(const Scene& scene) {
+    Bounds3 b;
+    for (const Mesh& mesh : scene.meshes) {
+        const glm::mat4 m = mesh.transform.matrix();
+        for (const glm::vec3& p : mesh.positions) b.extend(glm::vec3(m * glm::vec4(p, 1.0f)));
+    }
+    for (const QuadLight& q : scene.quadLights) {
+        b.extend(q.corner);
+        b.extend(q.corner + q.edge1);
+        b.extend(q.corner + q.edge2);
+        b.extend(q.corner + q.edge1 + q.edge2);
+    }
+    for (const PointLight& l : scene.pointLights) b.extend(l.position);
+    return b;
+}
+
+}  // namespace igi

@@ -1,0 +1,116 @@
+// A scene rebuilt from its bundle (what a client receives) equals the one loaded from disk.
+
+#include <gtest/gtest.h>
+
+#include "scene/SceneLoader.h"
+#include "scene/TestScenes.h"
+
+namespace igi {
+namespace {
+
+void expectSameMaterial(const Material& a, const Material& b) {
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.diffuse, b.diffuse);
+    EXPECT_EQ(a.diffuseTexture, b.diffuseTexture);
+    EXPECT_EQ(a.specular, b.specular);
+    EXPECT_EQ(a.phongExponent, b.phongExponent);
+    EXPECT_EQ(a.reflection, b.reflection);
+    EXPECT_EQ(a.glass, b.glass);
+    EXPECT_EQ(a.ior, b.ior);
+    EXPECT_EQ(a.transmittance, b.transmittance);
+    EXPECT_EQ(a.emission, b.emission);
+}
+
+void expectSameScene(const Scene& a, const Scene& b) {
+    EXPECT_EQ(a.camera, b.camera);
+    EXPECT_EQ(a.image.width, b.image.width);
+    EXPECT_EQ(a.image.height, b.image.height);
+    EXPECT_EQ(a.image.exposure, b.image.exposure);
+    EXPECT_EQ(a.render, b.render);
+    ASSERT_EQ(a.meshes.size(), b.meshes.size());
+    for (std::size_t i = 0; i < a.meshes.size(); ++i) {
+        EXPECT_EQ(a.meshes[i].name, b.meshes[i].name);
+        EXPECT_EQ(a.meshes[i].transform, b.meshes[i].transform);
+        EXPECT_EQ(a.meshes[i].positions, b.meshes[i].positions);
+        EXPECT_EQ(a.meshes[i].normals, b.meshes[i].normals);
+        EXPECT_EQ(a.meshes[i].uvs, b.meshes[i].uvs);
+        EXPECT_EQ(a.meshes[i].triangles, b.meshes[i].triangles);
+        EXPECT_EQ(a.meshes[i].materialIds, b.meshes[i].materialIds);
+    }
+    ASSERT_EQ(a.materials.size(), b.materials.size());
+    for (std::size_t i = 0; i < a.materials.size(); ++i)
+        expectSameMaterial(a.materials[i], b.materials[i]);
+    ASSERT_EQ(a.textures.size(), b.textures.size());
+    for (std::size_t i = 0; i < a.textures.size(); ++i) {
+        EXPECT_EQ(a.textures[i].path, b.textures[i].path);
+        EXPECT_EQ(a.textures[i].width, b.textures[i].width);
+        EXPECT_EQ(a.textures[i].height, b.textures[i].height);
+        EXPECT_EQ(a.textures[i].texels, b.textures[i].texels);
+        EXPECT_EQ(a.textures[i].average, b.textures[i].average);
+    }
+    ASSERT_EQ(a.pointLights.size(), b.pointLights.size());
+    for (std::size_t i = 0; i < a.pointLights.size(); ++i) {
+        EXPECT_EQ(a.pointLights[i].name, b.pointLights[i].name);
+        EXPECT_EQ(a.pointLights[i].position, b.pointLights[i].position);
+        EXPECT_EQ(a.pointLights[i].intensity, b.pointLights[i].intensity);
+    }
+    ASSERT_EQ(a.quadLights.size(), b.quadLights.size());
+    for (std::size_t i = 0; i < a.quadLights.size(); ++i) {
+        EXPECT_EQ(a.quadLights[i].corner, b.quadLights[i].corner);
+        EXPECT_EQ(a.quadLights[i].edge1, b.quadLights[i].edge1);
+        EXPECT_EQ(a.quadLights[i].edge2, b.quadLights[i].edge2);
+        EXPECT_EQ(a.quadLights[i].radiance, b.quadLights[i].radiance);
+    }
+}
+
+void expectRoundTrip(const std::filesystem::path& path) {
+    SCOPED_TRACE(path.string());
+    SceneBundle bundle;
+    const Scene fromDisk = loadSceneFile(path, &bundle);
+    EXPECT_EQ(bundle.sceneName, path.filename().string());
+    EXPECT_FALSE(bundle.files.empty());
+    const Scene fromBundle = loadSceneBundle(bundle);
+    expectSameScene(fromDisk, fromBundle);
+}
+
+TEST(SceneBundle, MinimalSceneRoundTrips) {
+    SceneBundle bundle;
+    loadSceneFile(test::testdataDir() / "minimal" / "scene.json", &bundle);
+    // Exactly the files the scene references, keyed relative to the scene file.
+    std::vector<std::string> keys;
+    for (const auto& [k, v] : bundle.files) keys.push_back(k);
+    EXPECT_EQ(keys, (std::vector<std::string>{"box.mtl", "box.obj", "checker.ppm"}));
+    expectRoundTrip(test::testdataDir() / "minimal" / "scene.json");
+}
+
+TEST(SceneBundle, GltfRoundTrips) {
+    expectRoundTrip(test::testdataDir() / "gltf" / "scene.json");
+}
+
+TEST(SceneBundle, SharedScenesRoundTrip) {
+    const auto shared = test::sharedScenesDir();
+    if (!shared) GTEST_SKIP() << "no shared scenes folder next to the project";
+    expectRoundTrip(*shared / "cornell-box" / "CornellBox-Sphere.obj");
+    expectRoundTrip(*shared / "cornell-box" / "water.obj");  // with a headlight
+    expectRoundTrip(test::testdataDir() / "sponza.json");    // case-mismatched textures
+    expectRoundTrip(test::testdataDir() / "gltf-samples.json");
+}
+
+TEST(SceneBundle, AMissingFileInTheBundleIsAnError) {
+    SceneBundle bundle;
+    loadSceneFile(test::testdataDir() / "minimal" / "scene.json", &bundle);
+    bundle.files.erase("box.mtl");
+    const std::string what = test::sceneErrorOf([&] { loadSceneBundle(bundle); });
+    EXPECT_NE(what.find("box.obj:3: material library 'box.mtl' not found"), std::string::npos)
+        << what;
+}
+
+TEST(SceneLoader, UnsupportedSceneFileType) {
+    const std::string what =
+        test::sceneErrorOf([] { loadSceneFile(test::testdataDir() / "minimal" / "checker.ppm"); });
+    EXPECT_NE(what.find("checker.ppm: unsupported scene file type '.ppm'"), std::string::npos)
+        << what;
+}
+
+}  // namespace
+}  // namespace igi

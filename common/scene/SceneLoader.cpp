@@ -1,0 +1,107 @@
+// loadSceneFile and loadSceneBundle: where the bytes come from (disk or a bundle) and how a
+// bare OBJ becomes a scene file.
+
+#include "scene/SceneLoader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/SceneError.h"
+#include "scene/SceneSections.h"
+
+namespace igi {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lowerExtension(const fs::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+std::string readSceneText(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw SceneError::inFile(path.string(), "cannot read scene file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return std::move(text).str();
+}
+
+// The scene file a bare OBJ stands for: the object, auto-framed, lit by a headlight when it
+// has no emitter of its own.
+std::string objSceneText(const std::string& objName, bool headlight) {
+    nlohmann::ordered_json scene;
+    scene["meshes"] = nlohmann::ordered_json::array({{{"file", objName}}});
+    if (headlight) scene["headlight"] = true;
+    return scene.dump(2) + "\n";
+}
+
+bool hasEmitter(const Scene& scene) {
+    if (!scene.quadLights.empty() || !scene.pointLights.empty()) return true;
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [](const Material& m) { return m.isEmissive(); });
+}
+
+// Errors name files relative to the scene file's folder; the user typed a path relative to
+// their working directory, so report it that way.
+SceneError relativeToUser(const SceneError& e, const fs::path& folder) {
+    const std::string file = fs::path(e.file()).is_absolute()
+                                 ? e.file()
+                                 : (folder / e.file()).lexically_normal().string();
+    return SceneError(file, e.line(), e.jsonPath(), e.message());
+}
+
+Scene loadFromDisk(const fs::path& path, SceneBundle& bundle) {
+    const std::string name = path.filename().string();
+    DiskFileSource disk(path.parent_path());
+    Scene scene;
+    const std::string ext = lowerExtension(path);
+    if (ext == ".json") {
+        bundle.sceneText = readSceneText(path);
+        scene = parseScene(bundle.sceneText, name, disk);
+    } else if (ext == ".obj") {
+        bundle.sceneText = objSceneText(name, false);
+        scene = parseScene(bundle.sceneText, name, disk);
+        // The headlight depends on the materials, known only now: add it as parseScene would
+        // for the text that says so, and ship that text.
+        if (!hasEmitter(scene)) {
+            bundle.sceneText = objSceneText(name, true);
+            addHeadlight(scene);
+        }
+    } else {
+        throw SceneError::inFile(
+            path.string(), "unsupported scene file type '" + ext + "' (expected .json or .obj)");
+    }
+    bundle.sceneName = name;
+    bundle.files = disk.filesRead();
+    return scene;
+}
+
+}  // namespace
+
+Scene loadSceneFile(const std::filesystem::path& path, SceneBundle* bundle) {
+    SceneBundle local;
+    SceneBundle& out = bundle ? *bundle : local;
+    try {
+        Scene scene = loadFromDisk(path, out);
+        scene.sourcePath = path.string();
+        return scene;
+    } catch (const SceneError& e) {
+        if (e.file() == path.string()) throw;
+        throw relativeToUser(e, path.parent_path());
+    }
+}
+
+Scene loadSceneBundle(const SceneBundle& bundle) {
+    BundleFileSource files(bundle.files);
+    return parseScene(bundle.sceneText, bundle.sceneName, files);
+}
+
+}  // namespace igi

@@ -1,0 +1,39 @@
+#pragma once
+
+// The sections of a JSON scene file, each read by its own file (CameraJson.cpp,
+// LightsJson.cpp, MeshesJson.cpp, MaterialOverrides.cpp, SceneParser.cpp). Keys, types,
+// ranges and defaults: docs/SCENE_FORMAT.md.
+
+#include "scene/JsonReader.h"
+#include "scene/Scene.h"
+#include "scene/SceneAssets.h"
+#include "scene/SceneBounds.h"
+
+namespace igi {
+
+/// "image": {width, height, exposure}.
+ImageSettings parseImage(const JsonNode& node);
+
+/// "camera": {position, look_at, up, fov_y}; rejects degenerate cameras.
+Camera parseCamera(const JsonNode& node);
+
+/// The camera used when a scene file has none: looks at the centre of `bounds` from +Z, far
+/// enough that the bounding sphere fits a 45 degree field of view (vertically, and
+/// horizontally for portrait images). Throws SceneError naming `file` when there is nothing
+/// to frame.
+Camera frameBounds(const Bounds3& bounds, const ImageSettings& image, const std::string& file);
+
+/// Adds the point light at the camera that gives an irradiance of 1 at the look-at point.
+void addHeadlight(Scene& scene);
+
+/// "lights": [{type: "point" | "quad", ...}].
+void parseLights(const JsonNode& node, Scene& scene);
+
+/// "meshes": [{file, name, transform}]: loads every file into scene.meshes (and its glTF
+/// lights into scene.pointLights).
+void loadMeshes(const JsonNode& node, SceneAssets& assets);
+
+/// "materials": {name: {overrides}}, applied to every loaded material of that name.
+void applyMaterialOverrides(const JsonNode& node, SceneAssets& assets);
+
+}  // namespace igi

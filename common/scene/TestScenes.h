@@ -1,0 +1,58 @@
+#pragma once
+
+// Helpers shared by the scene loader's tests (only *_test.cpp files include this).
+
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "scene/FileSource.h"
+#include "scene/SceneError.h"
+#include "scene/SceneLoader.h"
+
+namespace igi::test {
+
+/// common/scene/testdata in the source tree.
+inline std::filesystem::path testdataDir() {
+    if (const char* src = std::getenv("IGI_SOURCE_DIR")) {
+        return std::filesystem::path(src) / "common" / "scene" / "testdata";
+    }
+    return std::filesystem::path(__FILE__).parent_path() / "testdata";
+}
+
+/// The public test scenes (/work/shared/scenes next to the project), if present.
+inline std::optional<std::filesystem::path> sharedScenesDir() {
+    std::filesystem::path dir;
+    if (const char* src = std::getenv("IGI_SOURCE_DIR")) {
+        dir = std::filesystem::path(src) / ".." / "shared" / "scenes";
+    } else {
+        dir = testdataDir() / ".." / ".." / ".." / ".." / "shared" / "scenes";
+    }
+    dir = dir.lexically_normal();
+    if (!std::filesystem::is_directory(dir)) return std::nullopt;
+    return dir;
+}
+
+/// Parses scene text whose referenced files are given in memory.
+inline Scene parseInline(const std::string& json, std::map<std::string, std::string> files = {}) {
+    BundleFileSource source(std::move(files));
+    return parseScene(json, "inline.json", source);
+}
+
+/// The what() of the SceneError that `f` throws, or "" (and a test failure) if none.
+template <typename F>
+std::string sceneErrorOf(F&& f) {
+    try {
+        f();
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "expected a SceneError";
+    return "";
+}
+
+}  // namespace igi::test

@@ -1,0 +1,23 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace igi {
+
+/// A decoded colour texture in linear RGB.
+struct Texture {
+    std::string path;  ///< as the referencing file named it, for messages
+    int width = 0;
+    int height = 0;
+    std::vector<glm::vec3> texels;  ///< row-major; row 0 is the top of the image (v = 1)
+    glm::vec3 average{0.0f};        ///< mean texel, used for the scene's mean albedo
+
+    /// Bilinear lookup with wrapping; (u, v) as in OBJ, v = 0 at the bottom.
+    glm::vec3 sample(glm::vec2 uv) const;
+};
+
+}  // namespace igi

@@ -1,0 +1,182 @@
+#include "scene/TextureLoader.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <vector>
+
+#include <spdlog/spdlog.h>
+
+#include "scene/SceneError.h"
+
+namespace igi {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kMaxTextureSide = 32768;
+
+float srgbToLinear(float c) {
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+const std::array<float, 256>& srgbTable() {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (int i = 0; i < 256; ++i) t[i] = srgbToLinear(static_cast<float>(i) / 255.0f);
+        return t;
+    }();
+    return table;
+}
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+// A temporary copy of the bytes for decoders that cannot read through an IOProxy; removed
+// when it goes out of scope.
+class TempImageFile {
+  public:
+    TempImageFile(const std::string& name, const std::string& bytes) {
+        static std::atomic<int> counter{0};
+        path_ = fs::temp_directory_path() /
+                ("igi-texture-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) +
+                 lower(fs::path(name).extension().string()));
+        std::ofstream out(path_, std::ios::binary);
+        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        if (!out) throw SceneError::inFile(name, "cannot write a temporary copy to decode it");
+    }
+    ~TempImageFile() {
+        std::error_code ec;
+        fs::remove(path_, ec);
+    }
+    TempImageFile(const TempImageFile&) = delete;
+    TempImageFile& operator=(const TempImageFile&) = delete;
+    std::string path() const { return path_.string(); }
+
+  private:
+    fs::path path_;
+};
+
+// Opens the image from memory when its decoder supports an IOProxy (JPEG, PNG, EXR, ...),
+// else from a temporary file.
+std::unique_ptr<OIIO::ImageInput> openImage(const std::string& name, const std::string& bytes,
+                                            OIIO::Filesystem::IOMemReader& proxy,
+                                            std::unique_ptr<TempImageFile>& temp) {
+    auto in = OIIO::ImageInput::create(name, false, nullptr, &proxy);
+    if (in && in->supports("ioproxy")) {
+        OIIO::ImageSpec spec;
+        if (in->set_ioproxy(&proxy) && in->open(name, spec)) return in;
+    }
+    OIIO::geterror();  // clear the failed attempt's message
+    temp = std::make_unique<TempImageFile>(name, bytes);
+    in = OIIO::ImageInput::open(temp->path());
+    if (!in) throw SceneError::inFile(name, "cannot decode image: " + OIIO::geterror());
+    return in;
+}
+
+bool isLinear(const OIIO::ImageSpec& spec) {
+    if (spec.format.basetype == OIIO::TypeDesc::FLOAT ||
+        spec.format.basetype == OIIO::TypeDesc::HALF ||
+        spec.format.basetype == OIIO::TypeDesc::DOUBLE) {
+        return true;
+    }
+    return lower(spec.get_string_attribute("oiio:ColorSpace")) == "linear";
+}
+
+// Pixel i of an interleaved buffer with `channels` channels, as RGB.
+template <typename T, typename Decode>
+glm::vec3 rgbAt(const std::vector<T>& pixels, std::size_t i, int channels, Decode decode) {
+    const T* p = &pixels[i * channels];
+    if (channels < 3) return glm::vec3(decode(p[0]));
+    return {decode(p[0]), decode(p[1]), decode(p[2])};
+}
+
+void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture) {
+    const OIIO::ImageSpec& spec = in.spec();
+    const int channels = spec.nchannels;
+    const std::size_t count = static_cast<std::size_t>(texture.width) * texture.height;
+    texture.texels.resize(count);
+    if (spec.format == OIIO::TypeDesc::UINT8 && !isLinear(spec)) {
+        // The common case (JPEG, PNG): a table lookup per channel instead of a pow.
+        std::vector<unsigned char> pixels(count * channels);
+        if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data())) {
+            throw SceneError::inFile(name, "cannot decode image: " + in.geterror());
+        }
+        const auto& table = srgbTable();
+        for (std::size_t i = 0; i < count; ++i) {
+            texture.texels[i] =
+                rgbAt(pixels, i, channels, [&](unsigned char c) { return table[c]; });
+        }
+        return;
+    }
+    std::vector<float> pixels(count * channels);
+    if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data())) {
+        throw SceneError::inFile(name, "cannot decode image: " + in.geterror());
+    }
+    const bool linear = isLinear(spec);
+    for (std::size_t i = 0; i < count; ++i) {
+        texture.texels[i] = rgbAt(pixels, i, channels, [&](float c) {
+            c = std::isfinite(c) ? std::max(c, 0.0f) : 0.0f;
+            return linear ? c : srgbToLinear(c);
+        });
+    }
+}
+
+glm::vec3 meanOf(const std::vector<glm::vec3>& texels) {
+    glm::dvec3 sum(0.0);
+    for (const glm::vec3& t : texels) sum += glm::dvec3(t);
+    return texels.empty() ? glm::vec3(0.0f) : glm::vec3(sum / static_cast<double>(texels.size()));
+}
+
+}  // namespace
+
+Texture decodeTexture(const std::string& name, const std::string& bytes) {
+    OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
+    std::unique_ptr<TempImageFile> temp;
+    auto in = openImage(name, bytes, proxy, temp);
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxTextureSide ||
+        spec.height > kMaxTextureSide || spec.nchannels <= 0) {
+        throw SceneError::inFile(name, "unsupported image size " + std::to_string(spec.width) +
+                                           " x " + std::to_string(spec.height) + " x " +
+                                           std::to_string(spec.nchannels));
+    }
+    Texture texture;
+    texture.path = name;
+    texture.width = spec.width;
+    texture.height = spec.height;
+    readTexels(*in, name, texture);
+    in->close();
+    texture.average = meanOf(texture.texels);
+    return texture;
+}
+
+std::optional<std::string> locateFile(FileSource& files, const std::string& path) {
+    if (files.exists(path)) return path;
+    const fs::path p(path);
+    const std::string folder = p.parent_path().generic_string();
+    const std::string wanted = lower(p.filename().string());
+    for (const std::string& name : files.list(folder)) {
+        if (lower(name) != wanted) continue;
+        std::string found = folder.empty() ? name : folder + "/" + name;
+        spdlog::warn("'{}' does not exist; using '{}', whose name differs only in case", path,
+                     found);
+        return found;
+    }
+    return std::nullopt;
+}
+
+}  // namespace igi
