@@ -1,0 +1,242 @@
+#include "net/Connection.h"
+
+#include <algorithm>
+
+#include <spdlog/spdlog.h>
+#include <boost/asio/bind_executor.hpp>
+#include <boost/asio/dispatch.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/read.hpp>
+#include <boost/asio/write.hpp>
+
+#include "Codec.h"
+
+namespace igi::net {
+namespace {
+
+// Payloads are read in pieces so that every piece restarts the read deadline: a big SceneData
+// on a slow link is progress, not a stall.
+constexpr std::size_t kReadChunk = std::size_t{1} << 20;
+
+std::string describePeer(const boost::asio::ip::tcp::socket& socket) {
+    boost::system::error_code ec;
+    const auto endpoint = socket.remote_endpoint(ec);
+    if (ec) return "unknown peer";
+    return endpoint.address().to_string() + ":" + std::to_string(endpoint.port());
+}
+
+std::string seconds(std::chrono::milliseconds d) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g s", d.count() / 1000.0);
+    return buf;
+}
+
+}  // namespace
+
+Connection::Connection(boost::asio::ip::tcp::socket socket, ConnectionOptions options)
+    : socket_(std::move(socket)),
+      strand_(boost::asio::make_strand(socket_.get_executor())),
+      readDeadline_(strand_),
+      options_(options),
+      peer_(describePeer(socket_)) {}
+
+void Connection::start(MessageHandler onMessage, CloseHandler onClose) {
+    boost::asio::dispatch(strand_, [self = shared_from_this(), onMessage = std::move(onMessage),
+                                    onClose = std::move(onClose)]() mutable {
+        if (self->started_ || self->closed_) return;
+        self->started_ = true;
+        self->onMessage_ = std::move(onMessage);
+        self->onClose_ = std::move(onClose);
+        self->restartReadDeadline();
+        self->waitForReadDeadline();
+        self->readHeader();
+    });
+}
+
+// ---- reading ----
+
+void Connection::readHeader() {
+    boost::asio::async_read(
+        socket_, boost::asio::buffer(headerBytes_),
+        boost::asio::bind_executor(
+            strand_, [self = shared_from_this()](const boost::system::error_code& ec,
+                                                 std::size_t n) { self->onHeader(ec, n); }));
+}
+
+void Connection::onHeader(const boost::system::error_code& ec, std::size_t n) {
+    if (closed_) return;
+    bytesReceived_ += n;
+    if (ec) return onReadError(ec, n == 0, "header");
+    restartReadDeadline();
+    try {
+        header_ = proto::decodeHeader(headerBytes_);
+    } catch (const proto::ProtocolError& e) {
+        return closeNow(std::string("protocol error: ") + e.what(), CloseKind::Problem);
+    }
+    // Only now, with the size checked against the type's limit, is memory taken for it.
+    try {
+        payload_.resize(header_.payloadSize);
+    } catch (const std::bad_alloc&) {
+        return closeNow("out of memory for a " + std::to_string(header_.payloadSize) + "-byte " +
+                            proto::messageTypeName(header_.type) + " payload",
+                        CloseKind::Problem);
+    }
+    readPayload(0);
+}
+
+void Connection::readPayload(std::size_t offset) {
+    if (offset == payload_.size()) return deliver();
+    const std::size_t n = std::min(kReadChunk, payload_.size() - offset);
+    socket_.async_read_some(boost::asio::buffer(payload_.data() + offset, n),
+                            boost::asio::bind_executor(
+                                strand_, [self = shared_from_this(), offset](
+                                             const boost::system::error_code& ec, std::size_t got) {
+                                    self->onPayloadChunk(ec, got, offset);
+                                }));
+}
+
+void Connection::onPayloadChunk(const boost::system::error_code& ec, std::size_t n,
+                                std::size_t offset) {
+    if (closed_) return;
+    bytesReceived_ += n;
+    if (ec) return onReadError(ec, false, "payload");
+    restartReadDeadline();
+    readPayload(offset + n);
+}
+
+void Connection::deliver() {
+    proto::Message message;
+    try {
+        message = proto::decodeMessage(header_, payload_);
+    } catch (const proto::ProtocolError& e) {
+        return closeNow(std::string("protocol error: ") + e.what(), CloseKind::Problem);
+    }
+    // A large payload's memory is not kept for the next, most likely small, message.
+    if (payload_.capacity() > kReadChunk) std::vector<std::uint8_t>().swap(payload_);
+    ++messagesReceived_;
+    try {
+        if (onMessage_) onMessage_(header_, std::move(message));
+    } catch (const std::exception& e) {
+        return closeNow(std::string("message handler failed: ") + e.what(), CloseKind::Problem);
+    }
+    if (!closed_) readHeader();
+}
+
+void Connection::onReadError(const boost::system::error_code& ec, bool atMessageStart,
+                             const char* where) {
+    if (ec == boost::asio::error::eof) {
+        if (atMessageStart) return closeNow("peer closed the connection", CloseKind::PeerClosed);
+        return closeNow(
+            std::string("peer closed the connection in the middle of a message ") + where,
+            CloseKind::Problem);
+    }
+    closeNow("socket error while reading a message " + std::string(where) + ": " + ec.message(),
+             CloseKind::Problem);
+}
+
+// ---- read deadline ----
+
+void Connection::restartReadDeadline() {
+    readDeadline_.expires_after(options_.readTimeout);
+}
+
+void Connection::waitForReadDeadline() {
+    // Restarting the deadline cancels this wait; the handler then finds the deadline in the
+    // future and waits again (the deadline pattern of Asio's timeout examples).
+    readDeadline_.async_wait(boost::asio::bind_executor(
+        strand_, [self = shared_from_this()](const boost::system::error_code&) {
+            if (self->closed_) return;
+            if (self->readDeadline_.expiry() <= boost::asio::steady_timer::clock_type::now())
+                return self->closeNow(
+                    "read timeout: nothing received for " + seconds(self->options_.readTimeout),
+                    CloseKind::Problem);
+            self->waitForReadDeadline();
+        }));
+}
+
+// ---- writing ----
+
+void Connection::send(const proto::Message& message, std::uint32_t frame, std::uint32_t epoch) {
+    if (!open_) return;  // it would be dropped anyway: spare the encoding
+    std::vector<std::uint8_t> bytes = proto::encodeMessage(message, frame, epoch);
+    queuedBytes_ += bytes.size();
+    boost::asio::post(strand_, [self = shared_from_this(), bytes = std::move(bytes)]() mutable {
+        self->enqueue(std::move(bytes));
+    });
+}
+
+void Connection::enqueue(std::vector<std::uint8_t> bytes) {
+    if (closed_) {
+        queuedBytes_ -= bytes.size();
+        return;
+    }
+    writeQueue_.push_back(std::move(bytes));
+    if (!writing_) writeNext();
+}
+
+void Connection::writeNext() {
+    writing_ = true;
+    boost::asio::async_write(
+        socket_, boost::asio::buffer(writeQueue_.front()),
+        boost::asio::bind_executor(
+            strand_, [self = shared_from_this()](const boost::system::error_code& ec,
+                                                 std::size_t n) { self->onWrite(ec, n); }));
+}
+
+void Connection::onWrite(const boost::system::error_code& ec, std::size_t n) {
+    writing_ = false;
+    bytesSent_ += n;
+    if (closed_) return;
+    if (ec) return closeNow("socket error while writing: " + ec.message(), CloseKind::Problem);
+    ++messagesSent_;
+    queuedBytes_ -= writeQueue_.front().size();
+    writeQueue_.pop_front();
+    if (!writeQueue_.empty()) return writeNext();
+    if (closeWhenDrained_) closeNow(drainReason_, CloseKind::Owner);
+}
+
+// ---- closing ----
+
+void Connection::close(std::string reason) {
+    boost::asio::post(strand_, [self = shared_from_this(), reason = std::move(reason)] {
+        self->closeNow(reason, CloseKind::Owner);
+    });
+}
+
+void Connection::closeAfterSending(std::string reason) {
+    boost::asio::post(strand_, [self = shared_from_this(), reason = std::move(reason)] {
+        if (self->closed_) return;
+        if (self->writeQueue_.empty()) return self->closeNow(reason, CloseKind::Owner);
+        self->closeWhenDrained_ = true;
+        self->drainReason_ = reason;
+    });
+}
+
+void Connection::closeNow(const std::string& reason, CloseKind kind) {
+    if (closed_) return;
+    closed_ = true;
+    open_ = false;
+    if (kind == CloseKind::Problem)
+        spdlog::warn("connection with {} closed: {}", peer_, reason);
+    else
+        spdlog::info("connection with {} closed: {}", peer_, reason);
+    boost::system::error_code ignored;
+    readDeadline_.cancel();
+    socket_.shutdown(boost::asio::ip::tcp::socket::shutdown_both, ignored);
+    socket_.close(ignored);
+    // The buffer of a write still in flight (and the payload being read into) must outlive the
+    // cancelled operation: they are freed with the connection, not here.
+    while (writeQueue_.size() > (writing_ ? 1u : 0u)) {
+        queuedBytes_ -= writeQueue_.back().size();
+        writeQueue_.pop_back();
+    }
+    if (writing_) queuedBytes_ -= writeQueue_.front().size();
+    // Handlers often capture their owner, which holds this connection: drop them to break the
+    // cycle, and call onClose last, from a local, in case it drops the owner's last reference.
+    CloseHandler onClose = std::move(onClose_);
+    onClose_ = nullptr;
+    onMessage_ = nullptr;
+    if (onClose) onClose(reason);
+}
+
+}  // namespace igi::net

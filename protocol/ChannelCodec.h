@@ -1,0 +1,32 @@
+#pragma once
+
+#include <cstdint>
+
+#include "ByteReader.h"
+#include "ByteWriter.h"
+#include "render/TileChannels.h"
+
+namespace igi::proto {
+
+/// Most pixels a tile result may carry (a 1024 x 1024 tile).
+constexpr std::uint32_t kMaxTilePixels = 1u << 20;
+
+/// Bytes per pixel of each plane on the wire before compression.
+constexpr std::uint32_t kIrradianceBytes = 4;   // shared-exponent RGB
+constexpr std::uint32_t kReflectanceBytes = 3;  // 3 x sRGB u8
+constexpr std::uint32_t kNormalBytes = 2;       // octahedral 2 x u8
+constexpr std::uint32_t kDepthBytes = 2;        // log2 u16
+constexpr std::uint32_t kUnfilteredBytes = 4;   // shared-exponent RGB
+std::uint32_t bytesPerPixel(std::uint32_t mask);
+
+/// Quantizes the planes of `channels`, lays them out planar (and, within a plane, one byte of
+/// each pixel after the other, which zstd compresses much better), and appends them
+/// zstd-compressed (level 1). Planes that quantize to all zeros (depth: all +inf) are left out.
+/// Throws ProtocolError when a plane's size is not `count` or `count` exceeds kMaxTilePixels.
+void writeTileChannels(ByteWriter& out, const TileChannels& channels);
+
+/// Reads what writeTileChannels wrote. Validates the masks, the pixel count, the scales and
+/// the decompressed size before allocating; planes left out come back zero (depth +inf).
+TileChannels readTileChannels(ByteReader& in);
+
+}  // namespace igi::proto

@@ -1,0 +1,107 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "render/RenderSettings.h"
+#include "render/TileChannels.h"
+#include "scene/Camera.h"
+#include "scene/Scene.h"
+#include "scene/SceneLoader.h"
+
+namespace igi::proto {
+
+/// Every message starts with this fixed 24-byte header (little-endian):
+///   u32 magic 'IGIP', u16 version, u16 type, u32 frame, u32 epoch, u32 payload size,
+///   u32 reserved (0).
+/// The frame and the scene epoch travel in every message so that results of an older frame or
+/// epoch can be recognised and dropped. The payload size is checked against the type's maximum
+/// before anything is allocated.
+constexpr std::uint32_t kMagic = 0x50494749u;  // bytes 'I' 'G' 'I' 'P'
+constexpr std::uint16_t kVersion = 1;
+constexpr std::size_t kHeaderSize = 24;
+
+enum class MessageType : std::uint16_t {
+    Hello = 1,       ///< client -> master, first message
+    Welcome = 2,     ///< master -> client, answer to Hello
+    SceneData = 3,   ///< master -> client: the scene bundle and the settings to render it with
+    SceneReady = 4,  ///< client -> master: the scene is built, tiles may come
+    TileAssign = 5,  ///< master -> client: render one tile
+    TileResult = 6,  ///< client -> master: one tile's pixels
+    Heartbeat = 7,   ///< either way, keeps an idle connection known alive
+    Shutdown = 8,    ///< master -> client: the session is over, exit
+    Error = 9,       ///< either way: a reason, then the sender closes
+};
+
+struct Header {
+    std::uint16_t version = kVersion;
+    MessageType type = MessageType::Heartbeat;
+    std::uint32_t frame = 0;
+    std::uint32_t epoch = 0;
+    std::uint32_t payloadSize = 0;
+};
+
+struct Hello {
+    std::uint16_t protocolVersion = kVersion;
+    std::string buildId;
+    std::uint32_t threads = 0;
+    std::string hostname;
+};
+
+struct Welcome {
+    std::uint32_t clientId = 0;
+    std::uint64_t sessionSeed = 0;
+};
+
+/// The scene as files (so a client parses the same bytes as the master) plus what the master's
+/// command line changed: the settings, image size and camera to render with.
+struct SceneData {
+    SceneBundle bundle;
+    RenderSettings settings;
+    ImageSettings image;
+    Camera camera;
+};
+
+struct SceneReady {
+    std::uint64_t triangles = 0;
+    float buildSeconds = 0;
+};
+
+/// A tile: the pixels of interleaving cell (kx, ky) inside an image region. Region corners are
+/// multiples of the interleaving size, so pixel (x, y) of the region belongs to the tile when
+/// (x - x0) % n == kx and (y - y0) % m == ky.
+struct TileAssign {
+    std::uint32_t tileId = 0;
+    std::uint16_t x0 = 0, y0 = 0, width = 0, height = 0;
+    std::uint16_t kx = 0, ky = 0;
+};
+
+/// Work counters of one tile, summed by the master into statistics.
+struct TileStats {
+    std::uint64_t rays = 0;            ///< every ray traced for the tile
+    std::uint64_t shadowRays = 0;      ///< of which shadow rays
+    std::uint32_t vpls = 0;            ///< VPLs in the set the tile used
+    std::uint32_t causticPhotons = 0;  ///< photons in the set the tile used
+    std::uint32_t setsBuilt = 0;       ///< sets (P_k, C_k) this tile had to build first
+    float renderSeconds = 0;
+};
+
+struct TileResult {
+    std::uint32_t tileId = 0;
+    TileStats stats;
+    TileChannels channels;  ///< quantized and compressed on the wire
+};
+
+struct Heartbeat {};
+struct Shutdown {};
+struct Error {
+    std::string reason;
+};
+
+using Message = std::variant<Hello, Welcome, SceneData, SceneReady, TileAssign, TileResult,
+                             Heartbeat, Shutdown, Error>;
+
+}  // namespace igi::proto

@@ -1,0 +1,101 @@
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "Messages.h"
+
+namespace igi::proto::test {
+
+/// One message of every type with every field set away from its default, so that a codec
+/// that forgets or swaps a field fails the round trip.
+inline Hello sampleHello() {
+    return {kVersion, "0.1.0-abc123", 12, "render-07.local"};
+}
+inline Welcome sampleWelcome() {
+    return {42, 0x0123456789ABCDEFull};
+}
+
+inline SceneData sampleSceneData() {
+    SceneData m;
+    m.bundle.sceneName = "cornell.json";
+    m.bundle.sceneText = R"({"camera": {"position": [0, 1, 3.5]}, "meshes": ["box.obj"]})";
+    m.bundle.files["box.obj"] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    m.bundle.files["tex/wood.png"] = std::string("\x89PNG\r\n\x1a\n\0\0\0binary", 17);
+    m.settings.integrator = IntegratorKind::Path;
+    m.settings.interleaveX = 4;
+    m.settings.interleaveY = 2;
+    m.settings.directSamples = 7;
+    m.settings.vplPaths = 33;
+    m.settings.indirectVpls = 21;
+    m.settings.maxLightPathLength = 5;
+    m.settings.clampDistance = 0.03f;
+    m.settings.causticPhotons = 1234;
+    m.settings.causticRadius = 0.015f;
+    m.settings.maxEyeDepth = 9;
+    m.settings.filterX = 5;
+    m.settings.filterY = 6;
+    m.settings.filterDepthThreshold = 0.07f;
+    m.settings.filterNormalThreshold = 0.8f;
+    m.settings.accumulate = false;
+    m.settings.pathSamples = 17;
+    m.settings.maxPathLength = 11;
+    m.settings.tileSize = 48;
+    m.settings.seed = 0xFEEDFACECAFEBEEFull;
+    m.image = {800, 600, -1.5f};
+    m.camera.position = {1.0f, 2.0f, 3.0f};
+    m.camera.lookAt = {-1.0f, 0.5f, 0.25f};
+    m.camera.up = {0.0f, 0.0f, 1.0f};
+    m.camera.fovYDeg = 38.5f;
+    return m;
+}
+
+inline SceneReady sampleSceneReady() {
+    return {290000, 1.25f};
+}
+inline TileAssign sampleTileAssign() {
+    return {77, 96, 192, 96, 64, 2, 1};
+}
+
+/// A tile with smooth reflectance, normals and depth and noisy irradiance, like a real one.
+inline TileChannels sampleChannels(int n, std::uint32_t seed = 1) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    TileChannels c;
+    c.resize(n, kAllChannels);
+    const int w = std::max(1, static_cast<int>(std::sqrt(static_cast<float>(n))));
+    for (int i = 0; i < n; ++i) {
+        const float x = static_cast<float>(i % w) / w, y = static_cast<float>(i / w) / w;
+        const float smooth = 0.5f + 0.3f * std::sin(3.0f * x + 2.0f * y);
+        c.irradiance[i] = glm::vec3(2.0f, 1.8f, 1.5f) * smooth * (0.5f + u(rng));
+        c.reflectance[i] = glm::vec3(0.7f, 0.5f, 0.3f) * (0.8f + 0.2f * x);
+        c.normal[i] = glm::normalize(glm::vec3(0.2f * x - 0.1f, 1.0f, 0.1f * y));
+        c.depth[i] = 3.0f + x + 0.5f * y;
+        c.unfiltered[i] = (i % 17 == 0) ? glm::vec3(5.0f * u(rng)) : glm::vec3(0.0f);
+    }
+    return c;
+}
+
+inline TileResult sampleTileResult(int n = 256) {
+    TileResult m;
+    m.tileId = 991;
+    m.stats = {123456789012ull, 98765432101ull, 18, 500, 2, 0.0375f};
+    m.channels = sampleChannels(n);
+    return m;
+}
+
+inline Error sampleError() {
+    return {"scene failed to load: box.obj line 3: bad face"};
+}
+
+inline std::vector<Message> sampleMessages() {
+    return {sampleHello(),      sampleWelcome(),    sampleSceneData(),
+            sampleSceneReady(), sampleTileAssign(), sampleTileResult(),
+            Heartbeat{},        Shutdown{},         sampleError()};
+}
+
+}  // namespace igi::proto::test
