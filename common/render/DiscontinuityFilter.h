@@ -1,0 +1,30 @@
+#pragma once
+
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "render/FrameBuffer.h"
+
+namespace igi {
+
+/// The discontinuity buffer (paper, section 4.3): each pixel's irradiance is averaged with
+/// that of the neighbours in a sizeX x sizeY window that lie on the same smooth surface, then
+/// multiplied by the pixel's own reflectance (so texture detail stays sharp), and the radiance
+/// that must not be filtered is added. With the window the size of the interleaving pattern,
+/// every set P_k contributes to every pixel, which removes the structured noise of interleaving.
+struct DiscontinuityFilterSettings {
+    int sizeX = 3;
+    int sizeY = 3;
+    /// A neighbour is continuous when |depth_q - depth_p| <= depthThreshold * depth_p (relative,
+    /// so the test means the same at every scene scale) ...
+    float depthThreshold = 0.05f;
+    /// ... and dot(normal_p, normal_q) >= normalThreshold.
+    float normalThreshold = 0.9f;
+};
+
+/// Filters rows [rowBegin, rowEnd) of `frame` into `out` (width * height entries).
+void discontinuityFilterRows(const FrameBuffer& frame, const DiscontinuityFilterSettings& settings,
+                             int rowBegin, int rowEnd, std::vector<glm::vec3>& out);
+
+}  // namespace igi

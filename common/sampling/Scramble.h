@@ -1,0 +1,28 @@
+#pragma once
+
+#include <cstdint>
+
+#include "sampling/Hash.h"
+
+namespace igi {
+
+/// Independent sample streams: each has its own random bit vectors, so light paths, caustic
+/// photons, light samples and eye paths are decorrelated.
+enum class SampleStream : std::uint32_t {
+    VplPaths = 1,
+    CausticPhotons = 2,
+    DirectLight = 3,
+    EyePath = 4,
+    PathTracer = 5,
+};
+
+/// The random bit vector for one dimension of one stream in one frame. Every client derives the
+/// same vectors from the session seed and the frame number: no communication is needed, and a
+/// new frame gets new vectors (so accumulation converges).
+inline std::uint32_t scrambleBits(std::uint64_t seed, std::uint32_t frame, SampleStream stream,
+                                  std::uint32_t dimension) {
+    return static_cast<std::uint32_t>(
+        hashValues(seed, frame, static_cast<std::uint32_t>(stream), dimension) >> 32);
+}
+
+}  // namespace igi
