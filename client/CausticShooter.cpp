@@ -1,0 +1,152 @@
+#include "CausticShooter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include "Scattering.h"
+#include "math/Color.h"
+#include "math/Frame.h"
+#include "math/RayOffset.h"
+#include "math/Warp.h"
+#include "sampling/LightPathSampler.h"
+
+namespace igi {
+namespace {
+
+// Directions toward a target: a cone around it, or every direction from inside its sphere.
+bool insideSphere(glm::vec3 origin, glm::vec3 center, float radius) {
+    return glm::length(center - origin) <= radius;
+}
+
+float coneCosine(glm::vec3 origin, glm::vec3 center, float radius) {
+    const float d = glm::length(center - origin);
+    const float sinMax = radius / d;
+    return std::sqrt(std::max(0.0f, 1.0f - sinMax * sinMax));
+}
+
+}  // namespace
+
+CausticShooter::CausticShooter(const TraceableScene& scene, const Lights& lights,
+                               const RenderSettings& settings)
+    : scene_(scene),
+      lights_(lights),
+      seed_(settings.seed),
+      photons_(std::uint32_t(std::max(0, settings.causticPhotons))),
+      maxDepth_(std::uint32_t(std::max(1, settings.maxEyeDepth))),
+      radius_(settings.causticRadius * scene.diagonal()) {
+    // One target per specular object: the triangles of one mesh with one specular material.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<glm::vec3, glm::vec3>> boxes;
+    for (const auto& t : scene.specularTriangles()) {
+        auto [it, fresh] = boxes.try_emplace({t.mesh, t.material}, t.p0, t.p0);
+        for (glm::vec3 p : {t.p0, t.p1, t.p2}) {
+            it->second.first = glm::min(it->second.first, p);
+            it->second.second = glm::max(it->second.second, p);
+        }
+    }
+    for (const auto& [key, box] : boxes) {
+        const glm::vec3 center = 0.5f * (box.first + box.second);
+        // A little larger than the box's half diagonal so rays grazing its rim are not lost.
+        const float radius =
+            0.5f * glm::length(box.second - box.first) * 1.001f + 1e-6f * scene.diagonal();
+        targets_.push_back({center, radius});
+    }
+}
+
+float CausticShooter::directionPdf(glm::vec3 origin, glm::vec3 direction) const {
+    float pdf = 0;
+    for (const Target& t : targets_) {
+        if (insideSphere(origin, t.center, t.radius)) {
+            pdf += 1.0f / (4.0f * kPi);
+            continue;
+        }
+        const float cosMax = coneCosine(origin, t.center, t.radius);
+        if (glm::dot(direction, glm::normalize(t.center - origin)) >= cosMax)
+            pdf += uniformConePdf(cosMax);
+    }
+    return pdf / float(targets_.size());
+}
+
+bool CausticShooter::samplePhotonDirection(glm::vec3 origin, float uTarget, glm::vec2 u,
+                                           glm::vec3& direction, float& pdf) const {
+    const auto index =
+        std::min<std::size_t>(std::size_t(uTarget * targets_.size()), targets_.size() - 1);
+    const Target& t = targets_[index];
+    if (insideSphere(origin, t.center, t.radius)) {
+        direction = squareToUniformSphere(u);
+    } else {
+        const float cosMax = coneCosine(origin, t.center, t.radius);
+        direction =
+            Frame(glm::normalize(t.center - origin)).toWorld(squareToUniformCone(u, cosMax));
+    }
+    // The same direction could have come from another target's cone: use the mixture density.
+    pdf = directionPdf(origin, direction);
+    return pdf > 0;
+}
+
+std::vector<CausticPhoton> CausticShooter::shoot(std::uint32_t frame, std::uint32_t setIndex,
+                                                 std::uint32_t& shot, RayCounters& counters) const {
+    std::vector<CausticPhoton> photons;
+    shot = 0;
+    if (!active()) return photons;
+    const LightPathSampler sampler(seed_, frame, SampleStream::CausticPhotons, setIndex, photons_,
+                                   maxDepth_ + 1);
+    for (std::uint32_t j = 0; j < photons_; ++j) {
+        ++shot;
+        float uTarget = 0;
+        const LightSample light = lights_.sample(
+            sampler.emission(j, 0), {sampler.emission(j, 1), sampler.emission(j, 2)}, &uTarget);
+        glm::vec3 direction;
+        float pdfDirection = 0;
+        if (!samplePhotonDirection(light.position, uTarget,
+                                   {sampler.emission(j, 3), sampler.emission(j, 4)}, direction,
+                                   pdfDirection))
+            continue;
+        glm::vec3 power;
+        glm::vec3 origin = light.position;
+        if (light.isPoint) {
+            power = light.emitted / (light.pdf * pdfDirection * float(photons_));
+        } else {
+            const float cosLight = glm::dot(direction, light.normal);
+            if (cosLight <= 0) continue;  // area lights emit on their front side only
+            power = light.emitted * cosLight / (light.pdf * pdfDirection * float(photons_));
+            origin = offsetRayOrigin(light.position, light.normal);
+        }
+        trace(origin, direction, power, j, sampler, photons, counters);
+    }
+    return photons;
+}
+
+void CausticShooter::trace(glm::vec3 origin, glm::vec3 direction, glm::vec3 power,
+                           std::uint32_t path, const LightPathSampler& sampler,
+                           std::vector<CausticPhoton>& out, RayCounters& counters) const {
+    SurfacePoint hit;
+    for (std::uint32_t bounce = 1; bounce <= maxDepth_ + 1; ++bounce) {
+        if (!scene_.intersect(origin, direction, std::numeric_limits<float>::infinity(), hit,
+                              counters))
+            return;
+        const Lobes lobes = lobesAt(hit, -direction);
+        if (bounce > 1 && lobes.hasDiffuse())
+            out.push_back({hit.position, direction, power});  // L S+ D: a caustic photon
+        Lobe lobe;
+        float probability = 0;
+        if (bounce > maxDepth_ ||
+            !chooseLobe(lobes, sampler.bounce(path, bounce, 2), lobe, probability))
+            return;
+        // Only specular continuations make caustics; diffuse transport is the VPLs' business.
+        if (lobe == Lobe::Diffuse) return;
+        glm::vec3 weight;
+        if (!sampleSpecular(lobes, lobe,
+                            {sampler.bounce(path, bounce, 0), sampler.bounce(path, bounce, 1)},
+                            direction, weight))
+            return;
+        power *= weight / probability;
+        if (isBlack(power)) return;
+        origin = offsetRayOrigin(hit.position, lobes.faceNormal, direction);
+    }
+}
+
+}  // namespace igi

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "Lights.h"
+#include "TraceableScene.h"
+#include "igi/CausticPhoton.h"
+#include "render/RenderSettings.h"
+
+namespace igi {
+
+/// Shoots caustic photons from the lights at the mirrors and glass of a scene and follows them
+/// through specular bounces to the first diffuse surface (paper, section 4.1). Photons are aimed
+/// at the bounding spheres of the specular objects, so none is wasted on diffuse surfaces that
+/// direct light handles anyway; a scene without mirrors or glass has no target and shoots none.
+class CausticShooter {
+  public:
+    CausticShooter(const TraceableScene& scene, const Lights& lights,
+                   const RenderSettings& settings);
+
+    /// Whether this scene needs caustic photons at all.
+    bool active() const { return !targets_.empty() && !lights_.empty() && photons_ > 0; }
+
+    /// The photons of set `setIndex` in `frame`; `shot` receives how many were emitted.
+    std::vector<CausticPhoton> shoot(std::uint32_t frame, std::uint32_t setIndex,
+                                     std::uint32_t& shot, RayCounters& counters) const;
+
+    /// Gathering radius in world units.
+    float radius() const { return radius_; }
+
+  private:
+    struct Target {
+        glm::vec3 center;
+        float radius;
+    };
+    /// Density (solid angle) with which the target mixture picks `direction` from `origin`.
+    float directionPdf(glm::vec3 origin, glm::vec3 direction) const;
+    bool samplePhotonDirection(glm::vec3 origin, float uTarget, glm::vec2 u, glm::vec3& direction,
+                               float& pdf) const;
+    void trace(glm::vec3 origin, glm::vec3 direction, glm::vec3 power, std::uint32_t path,
+               const class LightPathSampler& sampler, std::vector<CausticPhoton>& out,
+               RayCounters& counters) const;
+
+    const TraceableScene& scene_;
+    const Lights& lights_;
+    std::uint64_t seed_;
+    std::uint32_t photons_;
+    std::uint32_t maxDepth_;
+    float radius_;
+    std::vector<Target> targets_;
+};
+
+}  // namespace igi

@@ -1,0 +1,25 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "SurfacePoint.h"
+#include "Vpl.h"
+#include "igi/CausticGrid.h"
+
+namespace igi {
+
+/// Everything the pixels of one interleaving identification k use in one frame: the set P_k
+/// (points on the lights for direct light, VPLs for indirect light) and the set C_k of caustic
+/// photons. A client builds it itself from the session seed, the frame and k, so every client
+/// that renders a tile of k builds exactly the same set, and no one waits for anyone.
+struct LightingSet {
+    std::vector<Vpl> direct;    ///< samples on the lights (unclamped geometry term)
+    std::vector<Vpl> indirect;  ///< VPLs from quasi-random walks (clamped geometry term)
+    CausticGrid caustics;
+    std::uint32_t lightPaths = 0;  ///< light paths traced for `indirect`
+    std::uint32_t photonsShot = 0;
+    RayCounters buildRays;  ///< rays traced to build the set
+};
+
+}  // namespace igi

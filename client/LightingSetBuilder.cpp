@@ -1,0 +1,157 @@
+#include "LightingSetBuilder.h"
+
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "Scattering.h"
+#include "math/Color.h"
+#include "math/Frame.h"
+#include "math/RayOffset.h"
+#include "math/Warp.h"
+#include "sampling/LightPathSampler.h"
+#include "sampling/Sobol.h"
+
+namespace igi {
+namespace {
+
+// Paths alive after each number of diffuse bounces in Keller's quasi-random walk: a fixed
+// fraction rho (the scene's mean albedo) continues at each diffuse bounce, the lowest path
+// indices first, so the count of VPLs is known in advance.
+std::vector<std::uint32_t> survivorCounts(std::uint32_t paths, float rho, int maxLength) {
+    std::vector<std::uint32_t> counts;
+    double alive = paths;
+    for (int d = 0; d + 1 < maxLength; ++d) {
+        counts.push_back(std::uint32_t(std::lround(alive)));
+        alive *= rho;
+    }
+    return counts;
+}
+
+std::uint32_t pathsFor(int wantedVpls, float rho, int maxLength) {
+    if (wantedVpls <= 0 || maxLength < 2) return 0;
+    for (std::uint32_t n = 1;; ++n) {
+        std::uint32_t total = 0;
+        for (std::uint32_t c : survivorCounts(n, rho, maxLength)) total += c;
+        if (total >= std::uint32_t(wantedVpls)) return n;
+    }
+}
+
+}  // namespace
+
+LightingSetBuilder::LightingSetBuilder(const TraceableScene& scene, const Lights& lights,
+                                       const RenderSettings& settings)
+    : scene_(scene), lights_(lights), settings_(settings), caustics_(scene, lights, settings) {
+    vplPaths_ = settings.vplPaths > 0 ? std::uint32_t(settings.vplPaths)
+                                      : pathsFor(settings.indirectVpls, scene.meanAlbedo(),
+                                                 settings.maxLightPathLength);
+    survivors_ = survivorCounts(vplPaths_, scene.meanAlbedo(), settings.maxLightPathLength);
+}
+
+std::uint32_t LightingSetBuilder::survivors(std::uint32_t d) const {
+    return d < survivors_.size() ? survivors_[d] : 0;
+}
+
+LightingSet LightingSetBuilder::build(std::uint32_t frame, std::uint32_t setIndex) const {
+    LightingSet set;
+    if (lights_.empty()) return set;
+    sampleDirect(frame, setIndex, set);
+    walkLightPaths(frame, setIndex, set);
+    std::uint32_t shot = 0;
+    auto photons = caustics_.shoot(frame, setIndex, shot, set.buildRays);
+    set.photonsShot = shot;
+    set.caustics = CausticGrid(std::move(photons), caustics_.radius());
+    return set;
+}
+
+void LightingSetBuilder::sampleDirect(std::uint32_t frame, std::uint32_t setIndex,
+                                      LightingSet& set) const {
+    const auto n = std::uint32_t(std::max(0, settings_.directSamples));
+    std::uint32_t scramble[3];
+    for (std::uint32_t d = 0; d < 3; ++d)
+        scramble[d] = scrambleBits(settings_.seed, frame, SampleStream::DirectLight, d);
+    for (std::uint32_t j = 0; j < n; ++j) {
+        // Set k owns points [k n, (k + 1) n): the sets of all k together stratify the lights.
+        const std::uint32_t index = setIndex * n + j;
+        const LightSample s = lights_.sample(
+            Sobol::scrambled(index, 0, scramble[0]),
+            {Sobol::scrambled(index, 1, scramble[1]), Sobol::scrambled(index, 2, scramble[2])});
+        if (!(s.pdf > 0)) continue;
+        Vpl v;
+        v.omni = s.isPoint;
+        v.normal = s.normal;
+        v.position = s.isPoint ? s.position : offsetRayOrigin(s.position, s.normal);
+        v.power = s.emitted / (s.pdf * float(n));
+        set.direct.push_back(v);
+    }
+}
+
+void LightingSetBuilder::walkLightPaths(std::uint32_t frame, std::uint32_t setIndex,
+                                        LightingSet& set) const {
+    const int maxLength = settings_.maxLightPathLength;
+    if (vplPaths_ == 0 || maxLength < 2) return;
+    const LightPathSampler sampler(settings_.seed, frame, SampleStream::VplPaths, setIndex,
+                                   vplPaths_, std::uint32_t(maxLength));
+    const float invPaths = 1.0f / float(vplPaths_);
+    set.lightPaths = vplPaths_;
+    SurfacePoint hit;
+    for (std::uint32_t j = 0; j < vplPaths_; ++j) {
+        const LightSample light = lights_.sample(sampler.emission(j, 0),
+                                                 {sampler.emission(j, 1), sampler.emission(j, 2)});
+        if (!(light.pdf > 0)) continue;
+        const glm::vec2 uDir(sampler.emission(j, 3), sampler.emission(j, 4));
+        glm::vec3 origin, direction, beta;  // beta: the flux the path carries
+        if (light.isPoint) {
+            origin = light.position;
+            direction = squareToUniformSphere(uDir);
+            beta = light.emitted * (4.0f * kPi) / light.pdf;
+        } else {
+            // Cosine-distributed emission: Le cos / (pdf_A cos / pi) = Le pi / pdf_A.
+            origin = offsetRayOrigin(light.position, light.normal);
+            direction = Frame(light.normal).toWorld(squareToCosineHemisphere(uDir));
+            beta = light.emitted * kPi / light.pdf;
+        }
+        std::uint32_t diffuseBounces = 0;
+        for (int vertex = 1; vertex < maxLength; ++vertex) {
+            if (!scene_.intersect(origin, direction, std::numeric_limits<float>::infinity(), hit,
+                                  set.buildRays))
+                break;
+            const Lobes lobes = lobesAt(hit, -direction);
+            // No diffuse VPL on mirrors or glass: what they reflect is the caustic photons' job.
+            if (lobes.hasDiffuse()) {
+                Vpl v;
+                v.position = offsetRayOrigin(hit.position, lobes.faceNormal);
+                v.normal = lobes.normal;
+                v.power = beta * lobes.diffuse * (kInvPi * invPaths);
+                set.indirect.push_back(v);
+            }
+            if (vertex + 1 >= maxLength) break;
+            Lobe lobe;
+            float probability = 0;
+            if (!chooseLobe(lobes, sampler.bounce(j, std::uint32_t(vertex), 2), lobe, probability))
+                break;
+            const glm::vec2 u(sampler.bounce(j, std::uint32_t(vertex), 0),
+                              sampler.bounce(j, std::uint32_t(vertex), 1));
+            if (lobe == Lobe::Diffuse) {
+                // Quasi-random Russian roulette by path index; the survivors carry the weight of
+                // the paths that stopped, so the estimate stays unbiased.
+                const std::uint32_t before = survivors(diffuseBounces),
+                                    after = survivors(diffuseBounces + 1);
+                ++diffuseBounces;
+                if (j >= after) break;
+                beta *= lobes.diffuse * (float(before) / float(after) / probability);
+                direction = Frame(lobes.normal).toWorld(squareToCosineHemisphere(u));
+                if (glm::dot(direction, lobes.faceNormal) <= 0) break;
+            } else {
+                glm::vec3 weight;
+                if (!sampleSpecular(lobes, lobe, u, direction, weight)) break;
+                beta *= weight / probability;
+            }
+            if (isBlack(beta) || !isFinite(beta)) break;
+            origin = offsetRayOrigin(hit.position, lobes.faceNormal, direction);
+        }
+    }
+}
+
+}  // namespace igi

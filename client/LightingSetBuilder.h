@@ -1,0 +1,41 @@
+#pragma once
+
+#include <cstdint>
+
+#include "CausticShooter.h"
+#include "LightingSet.h"
+#include "Lights.h"
+#include "TraceableScene.h"
+#include "render/RenderSettings.h"
+
+namespace igi {
+
+/// Builds the set P_k and C_k of one interleaving identification k in one frame: direct-light
+/// samples on the lights, VPLs from quasi-random walks (Keller's instant radiosity), caustic
+/// photons. Deterministic in (seed, frame, k): every client builds the same set.
+class LightingSetBuilder {
+  public:
+    LightingSetBuilder(const TraceableScene& scene, const Lights& lights,
+                       const RenderSettings& settings);
+
+    LightingSet build(std::uint32_t frame, std::uint32_t setIndex) const;
+
+    /// Light paths per set: settings.vplPaths, or derived from settings.indirectVpls.
+    std::uint32_t vplPaths() const { return vplPaths_; }
+    /// Paths still walking after d diffuse bounces (d = 0 .. maxLightPathLength - 2).
+    std::uint32_t survivors(std::uint32_t diffuseBounces) const;
+    bool causticsActive() const { return caustics_.active(); }
+
+  private:
+    void sampleDirect(std::uint32_t frame, std::uint32_t setIndex, LightingSet& set) const;
+    void walkLightPaths(std::uint32_t frame, std::uint32_t setIndex, LightingSet& set) const;
+
+    const TraceableScene& scene_;
+    const Lights& lights_;
+    RenderSettings settings_;
+    CausticShooter caustics_;
+    std::uint32_t vplPaths_ = 0;
+    std::vector<std::uint32_t> survivors_;
+};
+
+}  // namespace igi

@@ -1,0 +1,73 @@
+#include "Lights.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "math/Color.h"
+#include "math/Warp.h"
+
+namespace igi {
+namespace {
+
+std::uint64_t triangleKey(std::uint32_t mesh, std::uint32_t triangle) {
+    return (std::uint64_t(mesh) << 32) | triangle;
+}
+
+}  // namespace
+
+Lights::Lights(const TraceableScene& traceable, const Scene& scene) {
+    std::vector<float> power;
+    for (const auto& t : traceable.emissiveTriangles()) {
+        Emitter e;
+        e.p0 = t.p0;
+        e.e1 = t.p1 - t.p0;
+        e.e2 = t.p2 - t.p0;
+        const glm::vec3 c = glm::cross(e.e1, e.e2);
+        const float len = glm::length(c);
+        if (!(len > 0) || !std::isfinite(len)) continue;  // a degenerate triangle emits nothing
+        e.normal = c / len;
+        e.area = 0.5f * len;
+        e.emitted = traceable.materials()[t.material].emission;
+        triangleToEmitter_[triangleKey(t.mesh, t.triangle)] = std::uint32_t(emitters_.size());
+        emitters_.push_back(e);
+        power.push_back(kPi * e.area * luminance(e.emitted));  // one-sided Lambertian emitter
+    }
+    for (const PointLight& p : scene.pointLights) {
+        Emitter e;
+        e.p0 = p.position;
+        e.emitted = p.intensity;
+        e.isPoint = true;
+        emitters_.push_back(e);
+        power.push_back(4.0f * kPi * luminance(p.intensity));
+    }
+    distribution_ = Distribution1D(power);
+}
+
+LightSample Lights::sample(float uSelect, glm::vec2 uPoint, float* uRemapped) const {
+    LightSample s;
+    if (empty()) return s;
+    const std::size_t i = distribution_.sample(uSelect, uRemapped);
+    const Emitter& e = emitters_[i];
+    const float select = distribution_.pdf(i);
+    s.emitted = e.emitted;
+    s.isPoint = e.isPoint;
+    if (e.isPoint) {
+        s.position = e.p0;
+        s.pdf = select;
+        return s;
+    }
+    const glm::vec2 b = squareToUniformTriangle(uPoint);
+    s.position = e.p0 + b.x * e.e1 + b.y * e.e2;
+    s.normal = e.normal;
+    s.pdf = select / e.area;
+    return s;
+}
+
+float Lights::areaPdf(std::uint32_t mesh, std::uint32_t triangle) const {
+    const auto it = triangleToEmitter_.find(triangleKey(mesh, triangle));
+    if (it == triangleToEmitter_.end()) return 0;
+    return distribution_.pdf(it->second) / emitters_[it->second].area;
+}
+
+}  // namespace igi

@@ -1,0 +1,122 @@
+#include "PathIntegrator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "IgiIntegrator.h"
+#include "PixelSampler.h"
+#include "Scattering.h"
+#include "math/Color.h"
+#include "math/Frame.h"
+#include "math/RayOffset.h"
+#include "math/Warp.h"
+
+namespace igi {
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+constexpr std::uint32_t kDimsPerBounce = 7;  // lobe, 2 direction, 3 light sample, roulette
+
+float powerHeuristic(float a, float b) {
+    return a * a / (a * a + b * b);
+}
+
+}  // namespace
+
+PathIntegrator::PathIntegrator(const TraceableScene& scene, const Lights& lights,
+                               const RenderSettings& settings, const CameraModel& camera)
+    : scene_(scene), lights_(lights), settings_(settings), camera_(camera) {}
+
+glm::vec3 PathIntegrator::shade(int x, int y, std::uint32_t pixelIndex, std::uint32_t frame,
+                                RayCounters& counters) const {
+    const auto spp = std::uint32_t(std::max(1, settings_.pathSamples));
+    glm::vec3 sum(0.0f);
+    for (std::uint32_t s = 0; s < spp; ++s)
+        sum += tracePath(x, y, pixelIndex, frame * spp + s, counters);
+    return sum / float(spp);
+}
+
+glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
+                                    std::uint32_t sampleIndex, RayCounters& counters) const {
+    const PixelSampler sampler(settings_.seed, SampleStream::PathTracer, pixelIndex, sampleIndex);
+    glm::vec3 direction = camera_.direction(float(x) + sampler.get(0), float(y) + sampler.get(1));
+    glm::vec3 origin = camera_.origin();
+    glm::vec3 radiance(0.0f), beta(1.0f);
+    bool lastWasDiffuse = false;
+    float lastCosinePdf = 0;  // solid-angle density of the last diffuse bounce's direction
+    SurfacePoint hit;
+    for (int depth = 0; depth < settings_.maxPathLength; ++depth) {
+        if (!scene_.intersect(origin, direction, kInfinity, hit, counters)) break;
+        const glm::vec3 wo = -direction;
+        const glm::vec3 le = emittedToward(hit, wo);
+        if (!isBlack(le)) {
+            float weight = 1.0f;
+            if (lastWasDiffuse) {  // the light could also have been sampled directly
+                const float cosLight = glm::dot(wo, hit.geometricNormal);
+                const float lightPdf = lights_.areaPdf(hit.mesh, hit.triangle) * hit.distance *
+                                       hit.distance / std::max(cosLight, 1e-8f);
+                weight = powerHeuristic(lastCosinePdf, lightPdf);
+            }
+            radiance += beta * le * weight;
+        }
+        const Lobes lobes = lobesAt(hit, wo);
+        const std::uint32_t dim = 2 + kDimsPerBounce * std::uint32_t(depth);
+        Lobe lobe;
+        float probability = 0;
+        if (!chooseLobe(lobes, sampler.get(dim), lobe, probability)) break;
+        const glm::vec2 u(sampler.get(dim + 1), sampler.get(dim + 2));
+        if (lobe == Lobe::Diffuse) {
+            // Next-event estimation toward one light sample.
+            const LightSample ls =
+                lights_.sample(sampler.get(dim + 3), {sampler.get(dim + 4), sampler.get(dim + 5)});
+            const glm::vec3 shadowOrigin = offsetRayOrigin(hit.position, lobes.faceNormal);
+            if (ls.pdf > 0) {
+                const glm::vec3 toLight = ls.position - shadowOrigin;
+                const float d2 = glm::dot(toLight, toLight);
+                const float d = std::sqrt(d2);
+                const glm::vec3 w = toLight / d;
+                const float cosX = glm::dot(w, lobes.normal);
+                const float cosY = ls.isPoint ? 1.0f : -glm::dot(w, ls.normal);
+                if (d > 0 && cosX > 0 && cosY > 0 && glm::dot(w, lobes.faceNormal) > 0) {
+                    const glm::vec3 target =
+                        ls.isPoint ? ls.position : offsetRayOrigin(ls.position, ls.normal);
+                    const float distance = glm::length(target - shadowOrigin);
+                    if (!scene_.occluded(shadowOrigin, w, distance * (1.0f - 1e-4f), counters)) {
+                        const glm::vec3 f = lobes.diffuse * kInvPi / probability;
+                        if (ls.isPoint) {
+                            radiance += beta * f * ls.emitted * (cosX / (d2 * ls.pdf));
+                        } else {
+                            const float lightPdf = ls.pdf * d2 / cosY;  // solid angle
+                            const float weight = powerHeuristic(lightPdf, cosX * kInvPi);
+                            radiance += beta * f * ls.emitted * (cosX * weight / lightPdf);
+                        }
+                    }
+                }
+            }
+            direction = Frame(lobes.normal).toWorld(squareToCosineHemisphere(u));
+            const float cosX = glm::dot(direction, lobes.normal);
+            if (cosX <= 0 || glm::dot(direction, lobes.faceNormal) <= 0) break;
+            beta *= lobes.diffuse / probability;
+            lastWasDiffuse = true;
+            lastCosinePdf = cosX * kInvPi;
+        } else {
+            glm::vec3 weight;
+            if (!sampleSpecular(lobes, lobe, u, direction, weight)) break;
+            beta *= weight / probability;
+            lastWasDiffuse = false;
+        }
+        origin = offsetRayOrigin(hit.position, lobes.faceNormal, direction);
+        if (depth >= 3) {  // Russian roulette once the path has had its main bounces
+            const float q = std::min(0.95f, maxComponent(beta));
+            if (sampler.get(dim + 6) >= q) break;
+            beta /= q;
+        }
+        if (!isFinite(beta)) break;
+    }
+    return radiance;
+}
+
+}  // namespace igi

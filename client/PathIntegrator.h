@@ -1,0 +1,35 @@
+#pragma once
+
+#include <cstdint>
+
+#include "CameraModel.h"
+#include "Lights.h"
+#include "TraceableScene.h"
+#include "render/RenderSettings.h"
+
+namespace igi {
+
+/// The brute-force reference: unidirectional path tracing over the same scene and materials,
+/// with next-event estimation on the diffuse lobe (multiple importance sampling against BSDF
+/// sampling for area lights) and Russian roulette. Glossy, mirror and glass bounces are sampled
+/// from the BSDF only. Converges to the answer IGI approximates.
+class PathIntegrator {
+  public:
+    PathIntegrator(const TraceableScene& scene, const Lights& lights,
+                   const RenderSettings& settings, const CameraModel& camera);
+
+    /// Mean radiance of settings.pathSamples paths through the pixel in this frame.
+    glm::vec3 shade(int x, int y, std::uint32_t pixelIndex, std::uint32_t frame,
+                    RayCounters& counters) const;
+
+  private:
+    glm::vec3 tracePath(int x, int y, std::uint32_t pixelIndex, std::uint32_t sampleIndex,
+                        RayCounters& counters) const;
+
+    const TraceableScene& scene_;
+    const Lights& lights_;
+    RenderSettings settings_;
+    const CameraModel& camera_;
+};
+
+}  // namespace igi

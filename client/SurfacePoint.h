@@ -1,0 +1,37 @@
+#pragma once
+
+#include <cstdint>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "scene/Material.h"
+
+namespace igi {
+
+/// Where a ray hit, in world space, with what shading needs.
+struct SurfacePoint {
+    glm::vec3 position{0.0f};
+    glm::vec3 geometricNormal{0.0f};  ///< unit, on the counter-clockwise (front) side
+    glm::vec3 shadingNormal{0.0f};    ///< unit, interpolated, same side as geometricNormal
+    glm::vec2 uv{0.0f};
+    glm::vec3 albedo{0.0f};  ///< Lambertian albedo: Kd times the texture
+    const Material* material = nullptr;
+    std::uint32_t mesh = 0;
+    std::uint32_t triangle = 0;
+    float distance = 0;  ///< along the ray that found it
+};
+
+/// Rays traced, for statistics; one per thread, summed per tile.
+struct RayCounters {
+    std::uint64_t rays = 0;
+    std::uint64_t shadowRays = 0;
+
+    RayCounters& operator+=(const RayCounters& o) {
+        rays += o.rays;
+        shadowRays += o.shadowRays;
+        return *this;
+    }
+};
+
+}  // namespace igi

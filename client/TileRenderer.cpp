@@ -1,0 +1,115 @@
+#include "TileRenderer.h"
+
+#include <atomic>
+#include <chrono>
+#include <future>
+#include <mutex>
+
+namespace igi {
+namespace {
+
+constexpr int kChunkPixels = 64;  // small enough to balance load, large enough to amortize
+
+}  // namespace
+
+struct TileRenderer::TileJob {
+    std::uint32_t frame = 0;
+    std::uint32_t tileId = 0;
+    Tile tile;
+    TileChannels channels;
+    std::atomic<int> remaining{0};
+    std::mutex mutex;  // guards stats
+    proto::TileStats stats;
+    Done done;
+};
+
+TileRenderer::TileRenderer(const TraceableScene& scene, const Scene& plain,
+                           const RenderSettings& settings, const Camera& camera,
+                           const ImageSettings& image)
+    : scene_(scene),
+      settings_(settings),
+      image_(image),
+      camera_(camera, image.width, image.height),
+      lights_(scene, plain),
+      builder_(scene, lights_, settings),
+      cache_(builder_),
+      igi_(scene, settings, camera_),
+      path_(scene, lights_, settings, camera_) {}
+
+void TileRenderer::render(ThreadPool& pool, std::uint32_t frame, std::uint32_t tileId,
+                          const Tile& tile, Done done) {
+    auto job = std::make_shared<TileJob>();
+    job->frame = frame;
+    job->tileId = tileId;
+    job->tile = tile;
+    job->done = std::move(done);
+    const int count = tile.pixelCount(settings_.interleaveX, settings_.interleaveY);
+    const bool path = settings_.integrator == IntegratorKind::Path;
+    job->channels.resize(count, path ? std::uint32_t(kUnfiltered) : kAllChannels);
+    const int chunks = (count + kChunkPixels - 1) / kChunkPixels;
+    job->remaining = chunks;
+    if (chunks == 0) {
+        job->done(proto::TileResult{tileId, job->stats, std::move(job->channels)});
+        return;
+    }
+    for (int c = 0; c < chunks; ++c) {
+        pool.submit([this, job, c, count] {
+            renderChunk(*job, c * kChunkPixels, std::min(count, (c + 1) * kChunkPixels));
+            if (job->remaining.fetch_sub(1) == 1)
+                job->done(proto::TileResult{job->tileId, job->stats, std::move(job->channels)});
+        });
+    }
+}
+
+proto::TileResult TileRenderer::renderNow(ThreadPool& pool, std::uint32_t frame, const Tile& tile) {
+    std::promise<proto::TileResult> promise;
+    auto future = promise.get_future();
+    render(pool, frame, 0, tile,
+           [&promise](proto::TileResult&& r) { promise.set_value(std::move(r)); });
+    return future.get();
+}
+
+void TileRenderer::renderChunk(TileJob& job, int begin, int end) {
+    const auto start = std::chrono::steady_clock::now();
+    const int n = settings_.interleaveX, m = settings_.interleaveY;
+    RayCounters counters;
+    proto::TileStats local;
+    TileChannels& out = job.channels;
+    if (settings_.integrator == IntegratorKind::Path) {
+        for (int i = begin; i < end; ++i) {
+            const int x = job.tile.pixelX(i, n), y = job.tile.pixelY(i, n, m);
+            out.unfiltered[i] =
+                path_.shade(x, y, std::uint32_t(y * image_.width + x), job.frame, counters);
+        }
+    } else {
+        bool built = false;
+        const auto set = cache_.get(job.frame, std::uint32_t(job.tile.setIndex(n)), built);
+        if (built) {
+            local.setsBuilt = 1;
+            counters += set->buildRays;
+        }
+        local.vpls = std::uint32_t(set->direct.size() + set->indirect.size());
+        local.causticPhotons = std::uint32_t(set->caustics.photons().size());
+        for (int i = begin; i < end; ++i) {
+            const int x = job.tile.pixelX(i, n), y = job.tile.pixelY(i, n, m);
+            const PixelResult r =
+                igi_.shade(x, y, std::uint32_t(y * image_.width + x), job.frame, *set, counters);
+            out.irradiance[i] = r.irradiance;
+            out.reflectance[i] = r.reflectance;
+            out.normal[i] = r.normal;
+            out.depth[i] = r.depth;
+            out.unfiltered[i] = r.unfiltered;
+        }
+    }
+    const float seconds =
+        std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
+    std::lock_guard lock(job.mutex);
+    job.stats.renderSeconds += seconds;  // busy time of the threads, not time spent queued
+    job.stats.rays += counters.rays;
+    job.stats.shadowRays += counters.shadowRays;
+    job.stats.setsBuilt += local.setsBuilt;
+    job.stats.vpls = std::max(job.stats.vpls, local.vpls);
+    job.stats.causticPhotons = std::max(job.stats.causticPhotons, local.causticPhotons);
+}
+
+}  // namespace igi

@@ -1,0 +1,55 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+
+#include "CameraModel.h"
+#include "IgiIntegrator.h"
+#include "LightingCache.h"
+#include "LightingSetBuilder.h"
+#include "Lights.h"
+#include "Messages.h"
+#include "PathIntegrator.h"
+#include "TraceableScene.h"
+#include "render/Tile.h"
+#include "util/ThreadPool.h"
+
+namespace igi {
+
+/// Renders tiles of one scene on all cores: each tile is cut into chunks of pixels that the
+/// pool's threads take as they come, so several tiles in flight keep every core busy. The set
+/// P_k / C_k of a tile comes from the cache (built by the first chunk that needs it).
+class TileRenderer {
+  public:
+    TileRenderer(const TraceableScene& scene, const Scene& plain, const RenderSettings& settings,
+                 const Camera& camera, const ImageSettings& image);
+
+    using Done = std::function<void(proto::TileResult&&)>;
+
+    /// Queues the tile's chunks on `pool`; `done` runs on the thread that finishes the last one.
+    void render(ThreadPool& pool, std::uint32_t frame, std::uint32_t tileId, const Tile& tile,
+                Done done);
+
+    /// Renders a tile on `pool` and waits for it (tests and tools).
+    proto::TileResult renderNow(ThreadPool& pool, std::uint32_t frame, const Tile& tile);
+
+    LightingCache& cache() { return cache_; }
+    const LightingSetBuilder& builder() const { return builder_; }
+
+  private:
+    struct TileJob;
+    void renderChunk(TileJob& job, int begin, int end);
+
+    const TraceableScene& scene_;
+    RenderSettings settings_;
+    ImageSettings image_;
+    CameraModel camera_;
+    Lights lights_;
+    LightingSetBuilder builder_;
+    LightingCache cache_;
+    IgiIntegrator igi_;
+    PathIntegrator path_;
+};
+
+}  // namespace igi

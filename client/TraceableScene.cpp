@@ -1,0 +1,252 @@
+#include "TraceableScene.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include "math/Color.h"
+
+namespace igi {
+namespace {
+
+glm::vec3 transformPoint(const glm::mat4& m, glm::vec3 p) {
+    return glm::vec3(m * glm::vec4(p, 1.0f));
+}
+
+// Two triangles per quad light, wound so that their front faces the light's emitting side.
+Mesh makeQuadLightMesh(const std::vector<QuadLight>& lights, std::uint32_t materialBase) {
+    Mesh mesh;
+    mesh.name = "quad lights";
+    for (std::uint32_t i = 0; i < lights.size(); ++i) {
+        const QuadLight& q = lights[i];
+        const auto base = std::uint32_t(mesh.positions.size());
+        mesh.positions.push_back(q.corner);
+        mesh.positions.push_back(q.corner + q.edge1);
+        mesh.positions.push_back(q.corner + q.edge1 + q.edge2);
+        mesh.positions.push_back(q.corner + q.edge2);
+        mesh.triangles.push_back({base, base + 1, base + 2});
+        mesh.triangles.push_back({base, base + 2, base + 3});
+        mesh.materialIds.push_back(materialBase + i);
+        mesh.materialIds.push_back(materialBase + i);
+    }
+    return mesh;
+}
+
+Material makeQuadLightMaterial(const QuadLight& q) {
+    Material m;
+    m.name = q.name.empty() ? "quad light" : q.name;
+    m.diffuse = glm::vec3(0.0f);  // a pure emitter: it reflects nothing
+    m.emission = q.radiance;
+    return m;
+}
+
+}  // namespace
+
+TraceableScene::TraceableScene(const EmbreeDevice& device, const Scene& scene)
+    : materials_(scene.materials), textures_(&scene.textures) {
+    quadLightMaterialBase_ = std::uint32_t(materials_.size());
+    for (const QuadLight& q : scene.quadLights) materials_.push_back(makeQuadLightMaterial(q));
+    quadLightMesh_ = makeQuadLightMesh(scene.quadLights, quadLightMaterialBase_);
+
+    top_ = rtcNewScene(device.get());
+    // Robust traversal: no hit is lost on shared edges, so closed meshes do not leak light.
+    rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
+    for (const Mesh& mesh : scene.meshes) addMesh(mesh, device.get());
+    addMesh(quadLightMesh_, device.get());
+    rtcCommitScene(top_);
+
+    RTCBounds b;
+    rtcGetSceneBounds(top_, &b);
+    const glm::vec3 extent(b.upper_x - b.lower_x, b.upper_y - b.lower_y, b.upper_z - b.lower_z);
+    const float d = glm::length(extent);
+    diagonal_ = std::isfinite(d) && d > 0 ? d : 1.0f;
+    computeMeanAlbedo(scene.textures);
+}
+
+TraceableScene::~TraceableScene() {
+    for (MeshData& m : meshes_)
+        if (m.scene) rtcReleaseScene(m.scene);
+    if (top_) rtcReleaseScene(top_);
+}
+
+void TraceableScene::addMesh(const Mesh& mesh, RTCDevice device) {
+    MeshData data;
+    data.mesh = &mesh;
+    data.objectToWorld = mesh.transform.matrix();
+    data.normalToWorld = glm::transpose(glm::inverse(glm::mat3(data.objectToWorld)));
+    const auto id = std::uint32_t(meshes_.size());
+    if (!mesh.triangles.empty()) {
+        data.scene = rtcNewScene(device);
+        rtcSetSceneFlags(data.scene, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneBuildQuality(data.scene, RTC_BUILD_QUALITY_HIGH);
+        RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vertices = static_cast<float*>(
+            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                    3 * sizeof(float), mesh.positions.size()));
+        auto* indices = static_cast<unsigned*>(
+            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                    3 * sizeof(unsigned), mesh.triangles.size()));
+        if (!vertices || !indices)
+            throw std::runtime_error("Embree could not allocate mesh buffers");
+        for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+            for (int c = 0; c < 3; ++c) vertices[3 * i + c] = mesh.positions[i][c];
+        for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+            for (int c = 0; c < 3; ++c) indices[3 * i + c] = mesh.triangles[i][c];
+        rtcCommitGeometry(geom);
+        rtcAttachGeometry(data.scene, geom);
+        rtcReleaseGeometry(geom);
+        rtcCommitScene(data.scene);
+
+        RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(instance, data.scene);
+        rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                                glm::value_ptr(data.objectToWorld));
+        rtcCommitGeometry(instance);
+        rtcAttachGeometryByID(top_, instance, id);
+        rtcReleaseGeometry(instance);
+        triangleCount_ += mesh.triangles.size();
+    }
+    meshes_.push_back(data);
+}
+
+bool TraceableScene::intersect(glm::vec3 origin, glm::vec3 direction, float tfar, SurfacePoint& hit,
+                               RayCounters& counters) const {
+    ++counters.rays;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray.org_x = origin.x;
+    rh.ray.org_y = origin.y;
+    rh.ray.org_z = origin.z;
+    rh.ray.dir_x = direction.x;
+    rh.ray.dir_y = direction.y;
+    rh.ray.dir_z = direction.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = tfar;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.flags = 0;
+    rh.ray.time = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(top_, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    fillSurfacePoint(rh, hit);
+    return true;
+}
+
+bool TraceableScene::occluded(glm::vec3 origin, glm::vec3 direction, float tfar,
+                              RayCounters& counters) const {
+    ++counters.rays;
+    ++counters.shadowRays;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray;
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.dir_x = direction.x;
+    ray.dir_y = direction.y;
+    ray.dir_z = direction.z;
+    ray.tnear = 0.0f;
+    ray.tfar = tfar;
+    ray.mask = 0xFFFFFFFFu;
+    ray.flags = 0;
+    ray.time = 0;
+    rtcOccluded1(top_, &context, &ray);
+    return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+TraceableScene::WorldTriangle TraceableScene::worldTriangle(std::uint32_t mesh,
+                                                            std::uint32_t triangle) const {
+    const MeshData& m = meshes_[mesh];
+    const glm::uvec3 t = m.mesh->triangles[triangle];
+    return {transformPoint(m.objectToWorld, m.mesh->positions[t.x]),
+            transformPoint(m.objectToWorld, m.mesh->positions[t.y]),
+            transformPoint(m.objectToWorld, m.mesh->positions[t.z]),
+            m.mesh->materialIds[triangle],
+            mesh,
+            triangle};
+}
+
+void TraceableScene::fillSurfacePoint(const RTCRayHit& rh, SurfacePoint& hit) const {
+    const std::uint32_t meshIndex = rh.hit.instID[0];
+    const MeshData& m = meshes_[meshIndex];
+    const Mesh& mesh = *m.mesh;
+    const glm::uvec3 t = mesh.triangles[rh.hit.primID];
+    const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
+
+    // Interpolating the vertices is more precise than origin + t * direction far from the origin.
+    const glm::vec3 pObject =
+        w * mesh.positions[t.x] + u * mesh.positions[t.y] + v * mesh.positions[t.z];
+    hit.position = transformPoint(m.objectToWorld, pObject);
+    const WorldTriangle tri = worldTriangle(meshIndex, rh.hit.primID);
+    glm::vec3 ng = glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
+    const float len = glm::length(ng);
+    ng = len > 0 ? ng / len : glm::vec3(0, 0, 1);
+    hit.geometricNormal = ng;
+
+    hit.shadingNormal = ng;
+    if (!mesh.normals.empty()) {
+        const glm::vec3 nObject =
+            w * mesh.normals[t.x] + u * mesh.normals[t.y] + v * mesh.normals[t.z];
+        const glm::vec3 ns = m.normalToWorld * nObject;
+        const float nsLen = glm::length(ns);
+        if (nsLen > 0 && std::isfinite(nsLen))
+            hit.shadingNormal = glm::dot(ns, ng) < 0 ? -ns / nsLen : ns / nsLen;
+    }
+    hit.uv = mesh.uvs.empty() ? glm::vec2(u, v)
+                              : w * mesh.uvs[t.x] + u * mesh.uvs[t.y] + v * mesh.uvs[t.z];
+    hit.mesh = meshIndex;
+    hit.triangle = rh.hit.primID;
+    hit.distance = rh.ray.tfar;
+    hit.material = &materials_[mesh.materialIds[rh.hit.primID]];
+    hit.albedo = hit.material->diffuse;
+    if (hit.material->diffuseTexture >= 0)
+        hit.albedo *= (*textures_)[hit.material->diffuseTexture].sample(hit.uv);
+}
+
+std::vector<TraceableScene::WorldTriangle> TraceableScene::trianglesWhere(
+    bool (*predicate)(const Material&)) const {
+    std::vector<WorldTriangle> result;
+    for (std::uint32_t mi = 0; mi < meshes_.size(); ++mi) {
+        const Mesh& mesh = *meshes_[mi].mesh;
+        for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+            if (predicate(materials_[mesh.materialIds[t]])) result.push_back(worldTriangle(mi, t));
+    }
+    return result;
+}
+
+std::vector<TraceableScene::WorldTriangle> TraceableScene::emissiveTriangles() const {
+    return trianglesWhere([](const Material& m) { return m.isEmissive(); });
+}
+
+std::vector<TraceableScene::WorldTriangle> TraceableScene::specularTriangles() const {
+    return trianglesWhere([](const Material& m) { return m.isSpecular(); });
+}
+
+void TraceableScene::computeMeanAlbedo(const std::vector<Texture>& textures) {
+    double weighted = 0, area = 0;
+    for (std::uint32_t mi = 0; mi < meshes_.size(); ++mi) {
+        const Mesh& mesh = *meshes_[mi].mesh;
+        for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+            const Material& mat = materials_[mesh.materialIds[t]];
+            if (mat.glass) continue;
+            glm::vec3 albedo = mat.diffuse;
+            if (mat.diffuseTexture >= 0) albedo *= textures[mat.diffuseTexture].average;
+            if (isBlack(albedo)) continue;
+            const WorldTriangle w = worldTriangle(mi, t);
+            const double a = 0.5 * glm::length(glm::cross(w.p1 - w.p0, w.p2 - w.p0));
+            if (!std::isfinite(a)) continue;
+            weighted += a * meanComponent(albedo);
+            area += a;
+        }
+    }
+    // Bounded away from 0 and 1: it is a continuation fraction and a divisor.
+    meanAlbedo_ = area > 0 ? float(std::clamp(weighted / area, 0.05, 0.95)) : 0.5f;
+}
+
+}  // namespace igi

@@ -1,0 +1,85 @@
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+
+#include "EmbreeDevice.h"
+#include "SurfacePoint.h"
+#include "scene/Scene.h"
+
+namespace igi {
+
+/// The Embree-backed, traceable form of a plain-data Scene: one Embree scene per mesh, placed by
+/// an instance in a top-level scene (so that moving an object is a transform update, not a
+/// rebuild), plus one mesh holding the quad lights' geometry. Built by one call, then read-only
+/// and safe to query from many threads.
+class TraceableScene {
+  public:
+    TraceableScene(const EmbreeDevice& device, const Scene& scene);
+    ~TraceableScene();
+    TraceableScene(const TraceableScene&) = delete;
+    TraceableScene& operator=(const TraceableScene&) = delete;
+
+    /// Closest hit along origin + t * direction, t in (0, tfar). `direction` need not be unit;
+    /// hit.distance is in units of its length.
+    bool intersect(glm::vec3 origin, glm::vec3 direction, float tfar, SurfacePoint& hit,
+                   RayCounters& counters) const;
+    /// Whether anything lies along origin + t * direction, t in (0, tfar).
+    bool occluded(glm::vec3 origin, glm::vec3 direction, float tfar, RayCounters& counters) const;
+
+    /// A triangle in world space, for lights and caustic targets.
+    struct WorldTriangle {
+        glm::vec3 p0, p1, p2;
+        std::uint32_t material;
+        std::uint32_t mesh;
+        std::uint32_t triangle;
+    };
+    /// Every triangle whose material emits (quad lights included, as two triangles each).
+    std::vector<WorldTriangle> emissiveTriangles() const;
+    /// Every triangle whose material is a mirror or glass.
+    std::vector<WorldTriangle> specularTriangles() const;
+
+    const std::vector<Material>& materials() const { return materials_; }
+    /// Index of the first material made for the quad lights; quad light i uses this + i.
+    std::uint32_t quadLightMaterialBase() const { return quadLightMaterialBase_; }
+    std::uint32_t quadLightMesh() const { return std::uint32_t(meshes_.size() - 1); }
+
+    /// The scene's scale: the diagonal of its bounds. Clamping and photon radii are fractions
+    /// of it, so they mean the same at every scale.
+    float diagonal() const { return diagonal_; }
+    /// Area-weighted mean Lambertian albedo of the diffuse surfaces (the fraction of light paths
+    /// continued at each diffuse bounce in the quasi-random walk).
+    float meanAlbedo() const { return meanAlbedo_; }
+    std::uint64_t triangleCount() const { return triangleCount_; }
+
+  private:
+    struct MeshData {
+        const Mesh* mesh = nullptr;
+        glm::mat4 objectToWorld{1.0f};
+        glm::mat3 normalToWorld{1.0f};
+        RTCScene scene = nullptr;
+    };
+
+    void addMesh(const Mesh& mesh, RTCDevice device);
+    WorldTriangle worldTriangle(std::uint32_t mesh, std::uint32_t triangle) const;
+    void fillSurfacePoint(const RTCRayHit& rh, SurfacePoint& hit) const;
+    std::vector<WorldTriangle> trianglesWhere(bool (*predicate)(const Material&)) const;
+    void computeMeanAlbedo(const std::vector<Texture>& textures);
+
+    std::vector<Material> materials_;
+    const std::vector<Texture>* textures_ = nullptr;
+    Mesh quadLightMesh_;
+    std::uint32_t quadLightMaterialBase_ = 0;
+    std::vector<MeshData> meshes_;
+    RTCScene top_ = nullptr;
+    float diagonal_ = 1.0f;
+    float meanAlbedo_ = 0.5f;
+    std::uint64_t triangleCount_ = 0;
+};
+
+}  // namespace igi

@@ -1,0 +1,49 @@
+// igi-client: a render client. Connects to a master, receives the scene and renders tiles on
+// all cores until the master ends the session.
+#include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
+
+#include "ClientSession.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"igi-client: renders tiles for an igi-master"};
+    std::string connect = "127.0.0.1:7878";
+    igi::ClientOptions options;
+    std::string logLevel = "info";
+    app.add_option("--connect", connect, "the master's HOST:PORT")->capture_default_str();
+    app.add_option("--threads", options.threads, "render threads (0: every hardware thread)")
+        ->capture_default_str();
+    app.add_option("--connect-timeout", options.connectTimeoutSeconds,
+                   "seconds to keep trying to reach the master")
+        ->capture_default_str();
+    app.add_option("--read-timeout", options.readTimeoutSeconds,
+                   "seconds of silence after which the master is considered gone")
+        ->capture_default_str();
+    app.add_option("--log-level", logLevel, "trace, debug, info, warn, error")
+        ->capture_default_str();
+    CLI11_PARSE(app, argc, argv);
+
+    spdlog::set_level(spdlog::level::from_str(logLevel));
+    spdlog::set_pattern("[%H:%M:%S.%e] [client %P] [%l] %v");
+    const auto colon = connect.rfind(':');
+    if (colon == std::string::npos) {
+        spdlog::error("--connect needs HOST:PORT, got '{}'", connect);
+        return 2;
+    }
+    options.host = connect.substr(0, colon);
+    try {
+        const int port = std::stoi(connect.substr(colon + 1));
+        if (port <= 0 || port > 65535) throw std::out_of_range("port");
+        options.port = static_cast<std::uint16_t>(port);
+    } catch (const std::exception&) {
+        spdlog::error("--connect: '{}' is not a port number", connect.substr(colon + 1));
+        return 2;
+    }
+    try {
+        igi::ClientSession session(options);
+        return session.run();
+    } catch (const std::exception& e) {
+        spdlog::error("{}", e.what());
+        return 1;
+    }
+}
