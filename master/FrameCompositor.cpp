@@ -1,0 +1,49 @@
+#include "FrameCompositor.h"
+
+#include <algorithm>
+
+namespace igi {
+namespace {
+
+constexpr int kRowsPerBlock = 16;
+
+}  // namespace
+
+FrameCompositor::FrameCompositor(int width, int height, const RenderSettings& settings,
+                                 ThreadPool& pool)
+    : width_(width),
+      height_(height),
+      accumulate_(settings.accumulate),
+      filter_{settings.effectiveFilterX(), settings.effectiveFilterY(),
+              settings.filterDepthThreshold, settings.filterNormalThreshold},
+      pool_(pool),
+      filtered_(width, height),
+      shown_(width, height) {
+    accumulator_.reset(width, height);
+}
+
+template <typename F>
+void FrameCompositor::forRowBlocks(F&& f) {
+    const int blocks = (height_ + kRowsPerBlock - 1) / kRowsPerBlock;
+    pool_.parallelFor(std::size_t(blocks), [&](std::size_t b) {
+        const int begin = int(b) * kRowsPerBlock;
+        f(begin, std::min(height_, begin + kRowsPerBlock));
+    });
+}
+
+const Image& FrameCompositor::composite(const FrameBuffer& frame) {
+    forRowBlocks([&](int begin, int end) {
+        discontinuityFilterRows(frame, filter_, begin, end, filtered_.pixels);
+    });
+    if (!accumulate_) return filtered_;
+    forRowBlocks([&](int begin, int end) { accumulator_.addRows(filtered_.pixels, begin, end); });
+    accumulator_.endFrame();
+    forRowBlocks([&](int begin, int end) { accumulator_.meanRows(shown_.pixels, begin, end); });
+    return shown_;
+}
+
+void FrameCompositor::resetAccumulation() {
+    accumulator_.reset(width_, height_);
+}
+
+}  // namespace igi

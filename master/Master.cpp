@@ -1,0 +1,369 @@
+#include "Master.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <spdlog/spdlog.h>
+#include <boost/asio/ip/address.hpp>
+#include <nlohmann/json.hpp>
+
+#include "image/ImageIO.h"
+#include "render/Tile.h"
+#include "scene/RenderSettingsJson.h"
+#include "scene/SceneError.h"
+
+namespace igi {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr auto kTickPeriod = std::chrono::milliseconds(20);
+// A tile is copied to an idle client only after it has been out this long, and this many times
+// its holder's usual tile time: short enough to get past a stalled client, long enough not to
+// duplicate every tile at the end of a frame.
+constexpr double kDuplicateAfterSeconds = 0.05;
+
+double secondsSince(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+}  // namespace
+
+Master::Master(MasterOptions options)
+    : options_(std::move(options)),
+      acceptor_(io_),
+      tick_(io_),
+      pool_(options_.threads > 0 ? options_.threads : ThreadPool::defaultThreads()),
+      created_(Clock::now()) {}
+
+Master::~Master() = default;
+
+void Master::loadScene() {
+    SceneBundle bundle;
+    scene_ = loadSceneFile(options_.scene, &bundle);
+    applyRenderSettingsJson(nlohmann::json::parse(options_.renderOverridesJson), scene_.render,
+                            "command line", "/render");
+    if (options_.width > 0) scene_.image.width = options_.width;
+    if (options_.height > 0) scene_.image.height = options_.height;
+    if (options_.exposureSet) scene_.image.exposure = options_.exposure;
+    sceneData_.bundle = std::move(bundle);
+    sceneData_.settings = scene_.render;
+    sceneData_.image = scene_.image;
+    sceneData_.camera = scene_.camera;
+
+    const RenderSettings& s = scene_.render;
+    auto layout = makeTiles(scene_.image.width, scene_.image.height, s.interleaveX, s.interleaveY,
+                            s.tileSize);
+    scheduler_ = std::make_unique<TileScheduler>(std::move(layout), s.setCount());
+    compositor_ =
+        std::make_unique<FrameCompositor>(scene_.image.width, scene_.image.height, s, pool_);
+    spdlog::info(
+        "scene {}: {} meshes, {} materials, {}x{} pixels, {} tiles per frame, {} integrator",
+        options_.scene.string(), scene_.meshes.size(), scene_.materials.size(), scene_.image.width,
+        scene_.image.height, scheduler_->layout().size(),
+        s.integrator == IntegratorKind::Path ? "path" : "IGI");
+}
+
+void Master::listen() {
+    using boost::asio::ip::tcp;
+    const tcp::endpoint endpoint(boost::asio::ip::make_address(options_.listenHost),
+                                 options_.listenPort);
+    acceptor_.open(endpoint.protocol());
+    acceptor_.set_option(tcp::acceptor::reuse_address(true));
+    acceptor_.bind(endpoint);
+    acceptor_.listen();
+    spdlog::info("listening on {}:{}", options_.listenHost, acceptor_.local_endpoint().port());
+    accept();
+}
+
+void Master::accept() {
+    acceptor_.async_accept([this](const boost::system::error_code& ec,
+                                  boost::asio::ip::tcp::socket socket) {
+        if (ec) {
+            if (ec != boost::asio::error::operation_aborted)
+                spdlog::warn("accept failed: {}", ec.message());
+            if (!acceptor_.is_open()) return;
+        } else if (!ending_) {
+            socket.set_option(boost::asio::ip::tcp::no_delay(true));
+            net::ConnectionOptions connectionOptions;
+            connectionOptions.readTimeout =
+                std::chrono::milliseconds(long(options_.readTimeoutSeconds * 1000));
+            const ClientId id = nextClientId_++;
+            Session& s = sessions_[id];
+            s.id = id;
+            s.connection = std::make_shared<net::Connection>(std::move(socket), connectionOptions);
+            stats_.client(id).peer = s.connection->peer();
+            spdlog::info("client {} connected from {}", id, s.connection->peer());
+            s.connection->start([this, id](const proto::Header& h,
+                                           proto::Message m) { onMessage(id, h, std::move(m)); },
+                                [this, id](const std::string& reason) { onClose(id, reason); });
+        }
+        accept();
+    });
+}
+
+void Master::onMessage(ClientId id, const proto::Header& header, proto::Message message) {
+    auto it = sessions_.find(id);
+    if (it == sessions_.end() || ending_) return;
+    Session& s = it->second;
+    if (auto* hello = std::get_if<proto::Hello>(&message)) {
+        onHello(s, *hello);
+    } else if (!s.helloed) {
+        refuse(s, "the first message must be Hello");
+    } else if (auto* ready = std::get_if<proto::SceneReady>(&message)) {
+        onSceneReady(s, *ready);
+    } else if (auto* result = std::get_if<proto::TileResult>(&message)) {
+        onTileResult(s, header, *result);
+    } else if (auto* error = std::get_if<proto::Error>(&message)) {
+        spdlog::warn("client {} reports: {}", id, error->reason);
+    } else if (!std::holds_alternative<proto::Heartbeat>(message)) {
+        refuse(s,
+               "unexpected " + proto::messageTypeName(proto::typeOf(message)) + " from a client");
+    }
+}
+
+void Master::refuse(Session& s, const std::string& reason) {
+    spdlog::warn("closing client {} ({}): {}", s.id, s.connection->peer(), reason);
+    s.connection->send(proto::Error{reason}, 0, 0);
+    s.connection->closeAfterSending(reason);
+}
+
+void Master::onHello(Session& s, const proto::Hello& hello) {
+    if (s.helloed) return refuse(s, "a second Hello");
+    if (hello.buildId != IGI_BUILD_ID)
+        return refuse(
+            s, "client build " + hello.buildId + " does not match master build " IGI_BUILD_ID);
+    s.helloed = true;
+    s.host = hello.hostname;
+    s.threads = std::max(1u, hello.threads);
+    ClientStats& c = stats_.client(s.id);
+    c.host = hello.hostname;
+    c.threads = hello.threads;
+    s.connection->send(proto::Welcome{s.id, scene_.render.seed}, 0, 0);
+    s.connection->send(sceneData_, 0, 0);
+}
+
+void Master::onSceneReady(Session& s, const proto::SceneReady& ready) {
+    if (s.ready) return refuse(s, "a second SceneReady");
+    s.ready = true;
+    s.lastResult = Clock::now();
+    spdlog::info("client {} ({}, {} threads) is ready: {} triangles built in {:.2f} s", s.id,
+                 s.host, s.threads, ready.triangles, ready.buildSeconds);
+    maybeStart();
+    dispatch();
+}
+
+int Master::readyClients() const {
+    return int(std::count_if(sessions_.begin(), sessions_.end(),
+                             [](const auto& e) { return e.second.ready; }));
+}
+
+void Master::maybeStart() {
+    if (started_ || readyClients() < std::max(1, options_.localClients + options_.remoteClients))
+        return;
+    started_ = true;
+    renderStart_ = Clock::now();
+    spdlog::info("{} clients ready after {:.2f} s: rendering {} frames", readyClients(),
+                 secondsSince(created_), options_.frames);
+}
+
+void Master::openFramesAsNeeded() {
+    // Two frames in flight at most: the next one opens once every tile of the previous one
+    // has been handed out, so clients never wait for the master to finish a frame.
+    while (nextFrameToOpen_ < std::uint32_t(options_.frames) &&
+           nextFrameToOpen_ <= nextFrameToFinish_ + 1 &&
+           (nextFrameToOpen_ == nextFrameToFinish_ ||
+            scheduler_->frameFullyAssigned(nextFrameToOpen_ - 1))) {
+        const std::uint32_t f = nextFrameToOpen_++;
+        scheduler_->openFrame(f);
+        FrameRecord& record = frames_[f];
+        record.buffer.reset(scene_.image.width, scene_.image.height);
+        record.opened = Clock::now();
+    }
+}
+
+int Master::depthFor(const Session& s) const {
+    // Enough tiles to cover ~20 ms of the client's work (latency hiding), and at least two per
+    // eight threads so every core has chunks to take.
+    const int byRate = int(std::ceil(s.tilesPerSecond * 0.02));
+    return std::clamp(std::max(byRate + 1, 2 + int(s.threads) / 8), 2, 64);
+}
+
+void Master::dispatch() {
+    if (!started_ || ending_) return;
+    for (auto& [id, s] : sessions_) {
+        if (!s.ready || !s.connection->isOpen()) continue;
+        while (scheduler_->inFlight(id) < depthFor(s)) {
+            openFramesAsNeeded();
+            const double minAge = std::max(kDuplicateAfterSeconds,
+                                           s.tilesPerSecond > 0 ? 3.0 / s.tilesPerSecond : 0.0);
+            const auto a = scheduler_->next(id, minAge);
+            if (!a) break;
+            const Tile& t = scheduler_->layout()[a->tile];
+            proto::TileAssign msg;
+            msg.tileId = a->tile;
+            msg.x0 = std::uint16_t(t.x0);
+            msg.y0 = std::uint16_t(t.y0);
+            msg.width = std::uint16_t(t.width);
+            msg.height = std::uint16_t(t.height);
+            msg.kx = std::uint16_t(t.kx);
+            msg.ky = std::uint16_t(t.ky);
+            s.connection->send(msg, a->frame, 0);
+        }
+    }
+}
+
+void Master::onTileResult(Session& s, const proto::Header& header, proto::TileResult& result) {
+    const auto& layout = scheduler_->layout();
+    if (result.tileId >= layout.size())
+        return refuse(
+            s, "a result for tile " + std::to_string(result.tileId) + ", which does not exist");
+    if (header.frame >= nextFrameToOpen_)
+        return refuse(s, "a result for frame " + std::to_string(header.frame) +
+                             ", which was never handed out");
+    const Tile& tile = layout[result.tileId];
+    const RenderSettings& rs = scene_.render;
+    if (result.channels.count != tile.pixelCount(rs.interleaveX, rs.interleaveY))
+        return refuse(s, "a result with " + std::to_string(result.channels.count) +
+                             " pixels for a tile of " +
+                             std::to_string(tile.pixelCount(rs.interleaveX, rs.interleaveY)));
+    const double age = std::chrono::duration<double>(Clock::now() - s.lastResult).count();
+    s.lastResult = Clock::now();
+    if (age > 0)
+        s.tilesPerSecond = s.tilesPerSecond > 0 ? 0.8 * s.tilesPerSecond + 0.2 / std::max(age, 1e-4)
+                                                : 1.0 / std::max(age, 1e-4);
+    const bool first = scheduler_->complete(s.id, header.frame, result.tileId);
+    stats_.addTile(header.frame, s.id, result.stats, proto::kHeaderSize + header.payloadSize,
+                   std::uint32_t(result.channels.count), !first);
+    if (first) {
+        frames_.at(header.frame)
+            .buffer.scatter(tile, rs.interleaveX, rs.interleaveY, result.channels);
+        finishReadyFrames();
+    }
+    dispatch();
+}
+
+void Master::finishReadyFrames() {
+    while (nextFrameToFinish_ < nextFrameToOpen_ && scheduler_->frameDone(nextFrameToFinish_)) {
+        const std::uint32_t f = nextFrameToFinish_++;
+        FrameRecord& record = frames_.at(f);
+        const auto start = Clock::now();
+        compositor_->composite(record.buffer);
+        FrameStats& fs = stats_.frame(f);
+        fs.compositeSeconds = secondsSince(start);
+        fs.seconds = secondsSince(record.opened);
+        spdlog::info("{}", stats_.summaryLine(f));
+        scheduler_->closeFrame(f);
+        frames_.erase(f);
+        if (nextFrameToFinish_ == std::uint32_t(options_.frames)) {
+            renderEnd_ = Clock::now();
+            endSession(0);
+            return;
+        }
+    }
+}
+
+void Master::onClose(ClientId id, const std::string& reason) {
+    auto it = sessions_.find(id);
+    if (it == sessions_.end()) return;
+    ClientStats& c = stats_.client(id);
+    c.left = true;
+    c.leaveReason = reason;
+    const int released = started_ && !ending_ ? scheduler_->releaseClient(id) : 0;
+    if (!ending_)
+        spdlog::warn("client {} left ({}); {} of its tiles go to others", id, reason, released);
+    sessions_.erase(it);
+    if (ending_) {
+        if (sessions_.empty()) io_.stop();
+        return;
+    }
+    dispatch();
+}
+
+void Master::scheduleTick() {
+    tick_.expires_after(kTickPeriod);
+    tick_.async_wait([this](const boost::system::error_code& ec) {
+        if (ec || ending_) return;
+        if (!started_ && secondsSince(created_) > options_.waitSeconds) {
+            spdlog::error("only {} of {} clients were ready after {:.0f} s", readyClients(),
+                          std::max(1, options_.localClients + options_.remoteClients),
+                          options_.waitSeconds);
+            endSession(3);
+            return;
+        }
+        // Heartbeats keep idle clients' read timeouts from firing; the tick also lets idle
+        // clients pick up copies of tiles that have been out too long.
+        if (++ticks_ % 50 == 0)
+            for (auto& [id, s] : sessions_) s.connection->send(proto::Heartbeat{}, 0, 0);
+        dispatch();
+        scheduleTick();
+    });
+}
+
+void Master::endSession(int exitCode) {
+    if (ending_) return;
+    ending_ = true;
+    exitCode_ = exitCode;
+    boost::system::error_code ignored;
+    acceptor_.close(ignored);
+    // Clients close on Shutdown; closing from this side could cut a client off while it still
+    // writes a last result, which it would report as an error. Stragglers are closed after a
+    // grace period.
+    for (auto& [id, s] : sessions_) s.connection->send(proto::Shutdown{}, 0, 0);
+    if (sessions_.empty()) {
+        io_.stop();
+        return;
+    }
+    tick_.expires_after(std::chrono::seconds(5));
+    tick_.async_wait([this](const boost::system::error_code& ec) {
+        if (ec) return;
+        for (auto& [id, s] : sessions_) s.connection->close("session over");
+    });
+}
+
+int Master::run() {
+    try {
+        loadScene();
+    } catch (const SceneError& e) {
+        spdlog::error("{}", e.what());
+        return 2;
+    }
+    listen();
+    if (options_.localClients > 0) {
+        const unsigned threads =
+            options_.clientThreads > 0
+                ? options_.clientThreads
+                : std::max(1u, ThreadPool::defaultThreads() / unsigned(options_.localClients));
+        const std::string port = std::to_string(acceptor_.local_endpoint().port());
+        const std::string host =
+            options_.listenHost == "0.0.0.0" ? "127.0.0.1" : options_.listenHost;
+        localClients_.start(LocalClients::clientExecutableBesideSelf(),
+                            {"--connect", host + ":" + port, "--threads", std::to_string(threads),
+                             "--log-level", options_.clientLogLevel},
+                            options_.localClients);
+    }
+    scheduleTick();
+    io_.run();
+    localClients_.stop(10.0);
+    if (exitCode_ != 0) return exitCode_;
+
+    const Image& image = compositor_->shown();
+    for (const auto& path : options_.outputs) {
+        writeImage(path, image, scene_.image.exposure);
+        spdlog::info("wrote {}", path.string());
+    }
+    const double seconds = std::chrono::duration<double>(renderEnd_ - renderStart_).count();
+    spdlog::info("{} frames in {:.2f} s: {:.2f} fps", options_.frames, seconds,
+                 stats_.fps(seconds));
+    if (!options_.statsJson.empty()) {
+        stats_.writeJson(
+            options_.statsJson,
+            {{"scene", options_.scene.string()},
+             {"width", std::to_string(scene_.image.width)},
+             {"height", std::to_string(scene_.image.height)},
+             {"integrator", scene_.render.integrator == IntegratorKind::Path ? "path" : "igi"}},
+            seconds);
+    }
+    return 0;
+}
+
+}  // namespace igi

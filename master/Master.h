@@ -1,0 +1,102 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
+
+#include "FrameCompositor.h"
+#include "LocalClients.h"
+#include "MasterOptions.h"
+#include "Messages.h"
+#include "Statistics.h"
+#include "TileScheduler.h"
+#include "net/Connection.h"
+#include "render/FrameBuffer.h"
+#include "scene/Scene.h"
+#include "scene/SceneLoader.h"
+#include "util/ThreadPool.h"
+
+namespace igi {
+
+/// The master: owns the session. It loads the scene, listens for clients (and starts local
+/// ones), ships them the scene, hands out tiles frame after frame, assembles the results,
+/// filters and accumulates them, and writes the image and the statistics.
+///
+/// All session state lives on one io thread (every connection handler runs there), so it
+/// needs no locks; filtering runs on the thread pool.
+class Master {
+  public:
+    explicit Master(MasterOptions options);
+    ~Master();
+
+    /// Runs the whole session; returns the process exit code.
+    int run();
+
+  private:
+    struct Session {
+        ClientId id = 0;
+        std::shared_ptr<net::Connection> connection;
+        bool helloed = false;
+        bool ready = false;
+        std::string host;
+        std::uint32_t threads = 1;
+        double tilesPerSecond = 0;  ///< measured, drives how many tiles it holds
+        std::chrono::steady_clock::time_point lastResult;
+    };
+    struct FrameRecord {
+        FrameBuffer buffer;
+        std::chrono::steady_clock::time_point opened;
+    };
+
+    void loadScene();
+    void listen();
+    void accept();
+    void onMessage(ClientId id, const proto::Header& header, proto::Message message);
+    void onClose(ClientId id, const std::string& reason);
+    void onHello(Session& s, const proto::Hello& hello);
+    void onSceneReady(Session& s, const proto::SceneReady& ready);
+    void onTileResult(Session& s, const proto::Header& header, proto::TileResult& result);
+    void refuse(Session& s, const std::string& reason);
+
+    void maybeStart();
+    void dispatch();
+    void openFramesAsNeeded();
+    int depthFor(const Session& s) const;
+    void finishReadyFrames();
+    void endSession(int exitCode);
+    void scheduleTick();
+    int readyClients() const;
+
+    MasterOptions options_;
+    boost::asio::io_context io_;
+    boost::asio::ip::tcp::acceptor acceptor_;
+    boost::asio::steady_timer tick_;
+    ThreadPool pool_;
+    Scene scene_;
+    proto::SceneData sceneData_;
+    std::unique_ptr<TileScheduler> scheduler_;
+    std::unique_ptr<FrameCompositor> compositor_;
+    Statistics stats_;
+    LocalClients localClients_;
+    std::map<ClientId, Session> sessions_;
+    std::map<std::uint32_t, FrameRecord> frames_;
+    ClientId nextClientId_ = 1;
+    std::uint32_t nextFrameToOpen_ = 0;
+    std::uint32_t nextFrameToFinish_ = 0;
+    std::uint64_t ticks_ = 0;
+    bool started_ = false;
+    bool ending_ = false;
+    int exitCode_ = 0;
+    std::chrono::steady_clock::time_point created_;
+    std::chrono::steady_clock::time_point renderStart_;
+    std::chrono::steady_clock::time_point renderEnd_;
+};
+
+}  // namespace igi

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace igi {
+
+/// Everything igi-master's command line says, as plain data.
+struct MasterOptions {
+    std::filesystem::path scene;
+    std::vector<std::filesystem::path> outputs;  ///< .png and/or .exr, written at the end
+    int frames = 1;
+    int localClients = 0;
+    int remoteClients = 0;  ///< wait for this many clients from anywhere
+    std::string listenHost = "127.0.0.1";
+    std::uint16_t listenPort = 0;  ///< 0: any free port (fine when all clients are local)
+    std::filesystem::path statsJson;
+    unsigned threads = 0;                 ///< master threads (0: every hardware thread)
+    unsigned clientThreads = 0;           ///< threads of each local client (0: share the machine)
+    double waitSeconds = 60;              ///< for the clients to connect and build the scene
+    double readTimeoutSeconds = 30;       ///< a client silent this long is dropped
+    std::string clientLogLevel = "info";  ///< passed to local clients
+    /// Render settings from the command line, as a JSON object in the scene file's "render"
+    /// syntax (so both are validated the same way), plus image overrides.
+    std::string renderOverridesJson = "{}";
+    int width = 0;  ///< 0: as the scene says
+    int height = 0;
+    bool exposureSet = false;
+    float exposure = 0;
+};
+
+}  // namespace igi

@@ -1,0 +1,109 @@
+#include "Statistics.h"
+
+#include <fstream>
+#include <stdexcept>
+
+#include <spdlog/fmt/fmt.h>
+#include <nlohmann/json.hpp>
+
+namespace igi {
+
+FrameStats& Statistics::frame(std::uint32_t index) {
+    FrameStats& f = frames_[index];
+    f.index = index;
+    return f;
+}
+
+ClientStats& Statistics::client(ClientId id) {
+    ClientStats& c = clients_[id];
+    c.id = id;
+    return c;
+}
+
+void Statistics::addTile(std::uint32_t frameIndex, ClientId clientId, const proto::TileStats& tile,
+                         std::uint64_t wireBytes, std::uint32_t pixels, bool duplicate) {
+    FrameStats& f = frame(frameIndex);
+    ClientStats& c = client(clientId);
+    f.rays += tile.rays;
+    f.shadowRays += tile.shadowRays;
+    f.wireBytes += wireBytes;
+    f.setsBuilt += tile.setsBuilt;
+    c.rays += tile.rays;
+    c.bytes += wireBytes;
+    c.renderSeconds += tile.renderSeconds;
+    if (duplicate) {
+        ++f.duplicateTiles;
+        return;
+    }
+    ++c.tiles;
+    ++f.tiles;
+    f.pixels += pixels;
+    vplSum_[frameIndex] += tile.vpls;
+    photonSum_[frameIndex] += tile.causticPhotons;
+    f.vplsPerSet = double(vplSum_[frameIndex]) / f.tiles;
+    f.photonsPerSet = double(photonSum_[frameIndex]) / f.tiles;
+}
+
+double Statistics::fps(double totalSeconds) const {
+    return totalSeconds > 0 ? double(frames_.size()) / totalSeconds : 0.0;
+}
+
+std::string Statistics::summaryLine(std::uint32_t index) const {
+    const auto it = frames_.find(index);
+    if (it == frames_.end()) return {};
+    const FrameStats& f = it->second;
+    const double mrays = f.seconds > 0 ? double(f.rays) / f.seconds * 1e-6 : 0.0;
+    const double bpp = f.pixels ? double(f.wireBytes) / double(f.pixels) : 0.0;
+    return fmt::format(
+        "frame {:4d}: {:7.1f} ms, {:6.1f} Mrays/s, {:5.1f} shadow rays/px, {:4.2f} B/px, "
+        "{} tiles ({} duplicate), {} sets built, filter+accumulate {:.1f} ms",
+        f.index, f.seconds * 1e3, mrays, f.pixels ? double(f.shadowRays) / double(f.pixels) : 0.0,
+        bpp, f.tiles, f.duplicateTiles, f.setsBuilt, f.compositeSeconds * 1e3);
+}
+
+void Statistics::writeJson(const std::filesystem::path& path,
+                           const std::map<std::string, std::string>& session,
+                           double totalSeconds) const {
+    nlohmann::json frames = nlohmann::json::array();
+    for (const auto& [index, f] : frames_) {
+        frames.push_back(
+            {{"index", f.index},
+             {"seconds", f.seconds},
+             {"composite_seconds", f.compositeSeconds},
+             {"rays", f.rays},
+             {"shadow_rays", f.shadowRays},
+             {"shadow_rays_per_pixel", f.pixels ? double(f.shadowRays) / double(f.pixels) : 0.0},
+             {"wire_bytes", f.wireBytes},
+             {"wire_bytes_per_pixel", f.pixels ? double(f.wireBytes) / double(f.pixels) : 0.0},
+             {"pixels", f.pixels},
+             {"tiles", f.tiles},
+             {"duplicate_tiles", f.duplicateTiles},
+             {"sets_built", f.setsBuilt},
+             {"vpls", f.vplsPerSet},
+             {"caustic_photons", f.photonsPerSet}});
+    }
+    nlohmann::json clients = nlohmann::json::array();
+    for (const auto& [id, c] : clients_) {
+        clients.push_back({{"id", c.id},
+                           {"host", c.host},
+                           {"peer", c.peer},
+                           {"threads", c.threads},
+                           {"tiles", c.tiles},
+                           {"rays", c.rays},
+                           {"bytes", c.bytes},
+                           {"render_seconds", c.renderSeconds},
+                           {"left", c.left},
+                           {"leave_reason", c.leaveReason}});
+    }
+    nlohmann::json root{{"frames", frames},
+                        {"clients", clients},
+                        {"fps", fps(totalSeconds)},
+                        {"seconds", totalSeconds},
+                        {"session", session}};
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    std::ofstream out(path);
+    if (!out) throw std::runtime_error(path.string() + ": cannot write statistics");
+    out << root.dump(2) << '\n';
+}
+
+}  // namespace igi

@@ -1,0 +1,65 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "Messages.h"
+#include "TileScheduler.h"
+
+namespace igi {
+
+/// What one frame cost, summed from its tiles and measured on the master.
+struct FrameStats {
+    std::uint32_t index = 0;
+    double seconds = 0;           ///< from the frame's first tile handed out to its image
+    double compositeSeconds = 0;  ///< master time in the discontinuity buffer and accumulation
+    std::uint64_t rays = 0;
+    std::uint64_t shadowRays = 0;
+    std::uint64_t wireBytes = 0;  ///< tile results received for it, headers included
+    std::uint64_t pixels = 0;
+    std::uint32_t tiles = 0;
+    std::uint32_t duplicateTiles = 0;  ///< results dropped because another copy came first
+    std::uint32_t setsBuilt = 0;
+    double vplsPerSet = 0;     ///< mean over the frame's tiles
+    double photonsPerSet = 0;  ///< mean over the frame's tiles
+};
+
+/// What one client did over the session.
+struct ClientStats {
+    ClientId id = 0;
+    std::string host;
+    std::string peer;
+    std::uint32_t threads = 0;
+    std::uint64_t tiles = 0;
+    std::uint64_t rays = 0;
+    std::uint64_t bytes = 0;
+    double renderSeconds = 0;
+    bool left = false;
+    std::string leaveReason;
+};
+
+/// Collects statistics for --stats-json and the console.
+class Statistics {
+  public:
+    FrameStats& frame(std::uint32_t index);
+    ClientStats& client(ClientId id);
+    void addTile(std::uint32_t frame, ClientId client, const proto::TileStats& tile,
+                 std::uint64_t wireBytes, std::uint32_t pixels, bool duplicate);
+
+    /// Writes {"frames": [...], "clients": [...], "fps": ..., "session": {...}}.
+    void writeJson(const std::filesystem::path& path,
+                   const std::map<std::string, std::string>& session, double totalSeconds) const;
+    /// One line for people watching.
+    std::string summaryLine(std::uint32_t frame) const;
+    double fps(double totalSeconds) const;
+
+  private:
+    std::map<std::uint32_t, FrameStats> frames_;
+    std::map<ClientId, ClientStats> clients_;
+    std::map<std::uint32_t, std::uint64_t> vplSum_, photonSum_;
+};
+
+}  // namespace igi

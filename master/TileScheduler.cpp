@@ -1,0 +1,158 @@
+#include "TileScheduler.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace igi {
+
+TileScheduler::TileScheduler(std::vector<Tile> layout, int setCount)
+    : layout_(std::move(layout)), setCount_(setCount) {
+    // Queue index of each tile: its k, numbered in the order the layout first shows it.
+    std::map<std::pair<int, int>, int> setOf;
+    for (const Tile& t : layout_) {
+        auto [it, fresh] = setOf.try_emplace({t.ky, t.kx}, int(setOf.size()));
+        setQueue_.push_back(it->second);
+    }
+    setCount_ = std::max(setCount_, int(setOf.size()));
+}
+
+void TileScheduler::openFrame(std::uint32_t frame) {
+    if (!frames_.empty() && frame <= frames_.rbegin()->first)
+        throw std::logic_error("frames must be opened in increasing order");
+    FrameState f;
+    f.tiles.resize(layout_.size());
+    f.pendingBySet.resize(std::size_t(setCount_));
+    for (std::uint32_t i = 0; i < layout_.size(); ++i)
+        f.pendingBySet[std::size_t(setQueue_[i])].push_back(i);
+    f.pending = int(layout_.size());
+    frames_.emplace(frame, std::move(f));
+}
+
+std::vector<std::uint32_t> TileScheduler::openFrames() const {
+    std::vector<std::uint32_t> result;
+    for (const auto& [frame, f] : frames_) result.push_back(frame);
+    return result;
+}
+
+std::optional<Assignment> TileScheduler::next(ClientId client, double minDuplicateAge) {
+    for (auto& [frame, f] : frames_)
+        if (f.pending > 0) return takePending(client, frame, f);
+    return takeDuplicate(client, minDuplicateAge);
+}
+
+int TileScheduler::chooseSet(ClientId client, const FrameState& f) const {
+    const auto current = currentSet_.find(client);
+    if (current != currentSet_.end() && !f.pendingBySet[std::size_t(current->second)].empty())
+        return current->second;
+    // Another k: the one fewest other clients are on, then the one with most tiles left.
+    std::vector<int> sharing(f.pendingBySet.size(), 0);
+    for (const auto& [other, k] : currentSet_)
+        if (other != client) ++sharing[std::size_t(k)];
+    int best = -1;
+    for (int k = 0; k < int(f.pendingBySet.size()); ++k) {
+        if (f.pendingBySet[std::size_t(k)].empty()) continue;
+        if (best < 0 || sharing[std::size_t(k)] < sharing[std::size_t(best)] ||
+            (sharing[std::size_t(k)] == sharing[std::size_t(best)] &&
+             f.pendingBySet[std::size_t(k)].size() > f.pendingBySet[std::size_t(best)].size()))
+            best = k;
+    }
+    return best;
+}
+
+std::optional<Assignment> TileScheduler::takePending(ClientId client, std::uint32_t frame,
+                                                     FrameState& f) {
+    const int k = chooseSet(client, f);
+    if (k < 0) return std::nullopt;
+    currentSet_[client] = k;
+    auto& queue = f.pendingBySet[std::size_t(k)];
+    const std::uint32_t tile = queue.front();
+    queue.pop_front();
+    --f.pending;
+    give(client, frame, tile, f);
+    return Assignment{frame, tile, false};
+}
+
+std::optional<Assignment> TileScheduler::takeDuplicate(ClientId client, double minAge) {
+    const auto now = std::chrono::steady_clock::now();
+    // The oldest frame first: it is the one holding the output back.
+    for (auto& [frame, f] : frames_) {
+        for (std::uint32_t i = 0; i < f.tiles.size(); ++i) {
+            TileState& t = f.tiles[i];
+            // One spare copy per tile is enough to get past one slow client.
+            if (t.state != State::InFlight || t.holders.size() >= 2 || t.holders.count(client))
+                continue;
+            if (std::chrono::duration<double>(now - t.given).count() < minAge) continue;
+            give(client, frame, i, f);
+            return Assignment{frame, i, true};
+        }
+    }
+    return std::nullopt;
+}
+
+void TileScheduler::give(ClientId client, std::uint32_t frame, std::uint32_t tile, FrameState& f) {
+    if (f.tiles[tile].state == State::Pending)
+        f.tiles[tile].given = std::chrono::steady_clock::now();
+    f.tiles[tile].state = State::InFlight;
+    f.tiles[tile].holders.insert(client);
+    held_[client].insert({frame, tile});
+}
+
+bool TileScheduler::complete(ClientId client, std::uint32_t frame, std::uint32_t tile) {
+    auto it = frames_.find(frame);
+    if (it == frames_.end() || tile >= it->second.tiles.size()) return false;
+    TileState& t = it->second.tiles[tile];
+    // Only a client that holds the tile may complete it: a result for a tile it was never given
+    // (or that someone else finished first) is dropped.
+    if (t.state != State::InFlight || !t.holders.count(client)) return false;
+    t.state = State::Done;
+    ++it->second.done;
+    // Other holders of a copy keep rendering it; their results will be dropped.
+    for (ClientId holder : t.holders) held_[holder].erase({frame, tile});
+    t.holders.clear();
+    return true;
+}
+
+int TileScheduler::releaseClient(ClientId client) {
+    int released = 0;
+    auto held = held_.find(client);
+    if (held != held_.end()) {
+        for (auto [frame, tile] : held->second) {
+            FrameState& f = frames_.at(frame);
+            TileState& t = f.tiles[tile];
+            t.holders.erase(client);
+            if (t.state != State::InFlight || !t.holders.empty()) continue;
+            // Back to the front of its k's queue: it is the oldest work there.
+            t.state = State::Pending;
+            f.pendingBySet[std::size_t(setQueue_[tile])].push_front(tile);
+            ++f.pending;
+            ++released;
+        }
+        held_.erase(held);
+    }
+    currentSet_.erase(client);
+    return released;
+}
+
+void TileScheduler::closeFrame(std::uint32_t frame) {
+    frames_.erase(frame);
+    for (auto& [client, tiles] : held_)
+        for (auto it = tiles.begin(); it != tiles.end();)
+            it = it->first == frame ? tiles.erase(it) : std::next(it);
+}
+
+bool TileScheduler::frameDone(std::uint32_t frame) const {
+    auto it = frames_.find(frame);
+    return it != frames_.end() && it->second.done == int(it->second.tiles.size());
+}
+
+bool TileScheduler::frameFullyAssigned(std::uint32_t frame) const {
+    auto it = frames_.find(frame);
+    return it != frames_.end() && it->second.pending == 0;
+}
+
+int TileScheduler::inFlight(ClientId client) const {
+    auto it = held_.find(client);
+    return it == held_.end() ? 0 : int(it->second.size());
+}
+
+}  // namespace igi

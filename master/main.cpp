@@ -1,0 +1,165 @@
+// igi-master: runs a rendering session. Loads a scene, gathers render clients (local processes
+// and/or clients from the network), renders frames with them and writes the image and
+// statistics.
+#include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "Master.h"
+
+namespace {
+
+// "3x3" -> [3, 3]
+nlohmann::json parsePair(const std::string& text, const std::string& option) {
+    const auto x = text.find('x');
+    try {
+        if (x == std::string::npos) throw std::invalid_argument(text);
+        std::size_t used = 0;
+        const int a = std::stoi(text.substr(0, x), &used);
+        if (used != x) throw std::invalid_argument(text);
+        const int b = std::stoi(text.substr(x + 1), &used);
+        if (used != text.size() - x - 1) throw std::invalid_argument(text);
+        return nlohmann::json::array({a, b});
+    } catch (const std::exception&) {
+        throw CLI::ValidationError(option, "expected NxM, for example 3x3, got '" + text + "'");
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"igi-master: Instant Global Illumination on a cluster of render clients"};
+    igi::MasterOptions o;
+    std::string scene, listen, logLevel = "info";
+    std::vector<std::string> outputs;
+    app.add_option("--scene", scene, "scene file (.json) or a bare .obj")->required();
+    app.add_option("--output", outputs,
+                   "image to write at the end (.png tone-mapped, .exr linear); repeatable");
+    app.add_option("--frames", o.frames, "frames to render")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1 << 24));
+    app.add_option("--local-clients", o.localClients,
+                   "igi-client processes to start on this machine")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 256));
+    app.add_option("--clients", o.remoteClients, "clients from anywhere to wait for")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 4096));
+    app.add_option("--listen", listen,
+                   "HOST:PORT to accept clients on (default 127.0.0.1, any free port; "
+                   "port 7878 when --clients is given)");
+    app.add_option("--stats-json", o.statsJson, "write per-frame and per-client statistics here");
+    app.add_option("--threads", o.threads, "master threads (0: all)")->capture_default_str();
+    app.add_option("--client-threads", o.clientThreads,
+                   "threads per local client (0: share the cores)")
+        ->capture_default_str();
+    app.add_option("--wait-seconds", o.waitSeconds, "how long to wait for the clients")
+        ->capture_default_str();
+    app.add_option("--read-timeout", o.readTimeoutSeconds,
+                   "drop a client silent this long (seconds)")
+        ->capture_default_str();
+    app.add_option("--width", o.width, "image width (overrides the scene)")
+        ->check(CLI::Range(1, 16384));
+    app.add_option("--height", o.height, "image height (overrides the scene)")
+        ->check(CLI::Range(1, 16384));
+    auto* exposure = app.add_option("--exposure", o.exposure, "exposure of the PNG in stops");
+    app.add_option("--log-level", logLevel, "trace, debug, info, warn, error")
+        ->capture_default_str();
+
+    // Render settings: same names, ranges and checks as the scene file's "render" section.
+    nlohmann::json render = nlohmann::json::object();
+    std::string integrator, interleave, filter;
+    int spp = 0;
+    auto* integratorOpt = app.add_option("--integrator", integrator, "igi, or path (the reference)")
+                              ->check(CLI::IsMember({"igi", "path"}));
+    auto* sppOpt = app.add_option("--spp", spp, "path tracer samples per pixel per frame");
+    auto* interleaveOpt = app.add_option("--interleave", interleave, "interleaving pattern NxM");
+    auto* filterOpt = app.add_option("--filter", filter, "discontinuity buffer size NxM");
+    struct Numeric {
+        const char* flag;
+        const char* key;
+        bool integer;  // integer keys must reach the JSON checks as integers
+        const char* help;
+        double value = 0;
+        CLI::Option* option = nullptr;
+    };
+    std::vector<Numeric> numerics = {
+        {"--direct-samples", "direct_samples", true,
+         "light samples per set (shadow rays per pixel)"},
+        {"--vpl-paths", "vpl_paths", true, "light paths per set (0: from --indirect-vpls)"},
+        {"--indirect-vpls", "indirect_vpls", true, "wanted indirect VPLs per set"},
+        {"--max-light-path-length", "max_light_path_length", true, "vertices of a light path"},
+        {"--clamp-distance", "clamp_distance", false, "VPL clamp, fraction of the scene diagonal"},
+        {"--caustic-photons", "caustic_photons", true, "caustic photons per set"},
+        {"--caustic-radius", "caustic_radius", false,
+         "photon gathering radius, fraction of the scene diagonal"},
+        {"--max-eye-depth", "max_eye_depth", true, "specular bounces followed by eye paths"},
+        {"--filter-depth-threshold", "filter_depth_threshold", false,
+         "relative depth difference that splits"},
+        {"--filter-normal-threshold", "filter_normal_threshold", false,
+         "normal cosine below which neighbours split"},
+        {"--max-path-length", "max_path_length", true, "path tracer's maximum path length"},
+        {"--tile-size", "tile_size", true, "tile edge in pixels of one k"},
+        {"--seed", "seed", true, "session seed of every random bit vector"},
+    };
+    for (auto& n : numerics) n.option = app.add_option(n.flag, n.value, n.help);
+    bool noAccumulate = false;
+    app.add_flag("--no-accumulate", noAccumulate,
+                 "show each frame alone instead of their running mean");
+    CLI11_PARSE(app, argc, argv);
+
+    spdlog::set_level(spdlog::level::from_str(logLevel));
+    spdlog::set_pattern("[%H:%M:%S.%e] [master] [%l] %v");
+    o.scene = scene;
+    o.clientLogLevel = logLevel;
+    for (const auto& out : outputs) o.outputs.emplace_back(out);
+    o.exposureSet = exposure->count() > 0;
+    try {
+        if (integratorOpt->count()) render["integrator"] = integrator;
+        if (sppOpt->count()) render["path_samples"] = spp;
+        if (interleaveOpt->count()) render["interleave"] = parsePair(interleave, "--interleave");
+        if (filterOpt->count()) render["filter"] = parsePair(filter, "--filter");
+        for (const auto& n : numerics) {
+            if (!n.option->count()) continue;
+            if (n.integer && n.value != std::floor(n.value))
+                throw CLI::ValidationError(n.flag, "expected a whole number");
+            if (n.integer)
+                render[n.key] = static_cast<std::int64_t>(n.value);
+            else
+                render[n.key] = n.value;
+        }
+        if (noAccumulate) render["accumulate"] = false;
+    } catch (const CLI::Error& e) {
+        return app.exit(e);
+    }
+    o.renderOverridesJson = render.dump();
+    if (listen.empty()) {
+        o.listenPort = o.remoteClients > 0 ? 7878 : 0;
+    } else {
+        const auto colon = listen.rfind(':');
+        if (colon == std::string::npos) {
+            spdlog::error("--listen needs HOST:PORT, got '{}'", listen);
+            return 2;
+        }
+        o.listenHost = listen.substr(0, colon);
+        try {
+            const int port = std::stoi(listen.substr(colon + 1));
+            if (port < 0 || port > 65535) throw std::out_of_range("port");
+            o.listenPort = static_cast<std::uint16_t>(port);
+        } catch (const std::exception&) {
+            spdlog::error("--listen: '{}' is not a port number", listen.substr(colon + 1));
+            return 2;
+        }
+    }
+    if (o.localClients + o.remoteClients == 0) {
+        spdlog::error("no clients: give --local-clients N and/or --clients N");
+        return 2;
+    }
+    try {
+        igi::Master master(o);
+        return master.run();
+    } catch (const std::exception& e) {
+        spdlog::error("{}", e.what());
+        return 1;
+    }
+}
