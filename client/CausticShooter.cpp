@@ -10,7 +10,6 @@
 #include "Scattering.h"
 #include "math/Color.h"
 #include "math/Frame.h"
-#include "math/RayOffset.h"
 #include "math/Warp.h"
 #include "sampling/LightPathSampler.h"
 
@@ -113,7 +112,7 @@ std::vector<CausticPhoton> CausticShooter::shoot(std::uint32_t frame, std::uint3
             const float cosLight = glm::dot(direction, light.normal);
             if (cosLight <= 0) continue;  // area lights emit on their front side only
             power = light.emitted * cosLight / (light.pdf * pdfDirection * float(photons_));
-            origin = offsetRayOrigin(light.position, light.normal);
+            origin = scene_.offsetOrigin(light.position, light.normal);
         }
         trace(origin, direction, power, j, sampler, photons, counters);
     }
@@ -145,7 +144,7 @@ void CausticShooter::trace(glm::vec3 origin, glm::vec3 direction, glm::vec3 powe
             return;
         power *= weight / probability;
         if (isBlack(power)) return;
-        origin = offsetRayOrigin(hit.position, lobes.faceNormal, direction);
+        origin = scene_.offsetOrigin(hit.position, lobes.faceNormal, direction);
     }
 }
 

@@ -6,7 +6,6 @@
 #include <glm/geometric.hpp>
 
 #include "math/Color.h"
-#include "math/RayOffset.h"
 #include "math/Warp.h"
 
 namespace igi {
@@ -89,7 +88,7 @@ std::optional<IgiIntegrator::EndPoint> IgiIntegrator::followSpecular(
     if (!sampleSpecular(firstLobes, lobe, {sampler.get(firstDim), sampler.get(firstDim + 1)},
                         direction, throughput))
         return std::nullopt;
-    glm::vec3 origin = offsetRayOrigin(first.position, firstLobes.faceNormal, direction);
+    glm::vec3 origin = scene_.offsetOrigin(first.position, firstLobes.faceNormal, direction);
     float pathLength = first.distance;
     SurfacePoint hit;
     for (int bounce = 1; bounce <= settings_.maxEyeDepth; ++bounce) {
@@ -111,7 +110,7 @@ std::optional<IgiIntegrator::EndPoint> IgiIntegrator::followSpecular(
                             weight))
             return std::nullopt;
         throughput *= weight / probability;
-        origin = offsetRayOrigin(hit.position, lobes.faceNormal, direction);
+        origin = scene_.offsetOrigin(hit.position, lobes.faceNormal, direction);
     }
     return std::nullopt;
 }
@@ -119,7 +118,7 @@ std::optional<IgiIntegrator::EndPoint> IgiIntegrator::followSpecular(
 glm::vec3 IgiIntegrator::irradianceOverPi(glm::vec3 position, glm::vec3 normal,
                                           glm::vec3 faceNormal, const LightingSet& set,
                                           RayCounters& counters) const {
-    const glm::vec3 origin = offsetRayOrigin(position, faceNormal);
+    const glm::vec3 origin = scene_.offsetOrigin(position, faceNormal);
     glm::vec3 irradiance(0.0f);
     auto gather = [&](const Vpl& v, float minDistance2) {
         const glm::vec3 toLight = v.position - origin;

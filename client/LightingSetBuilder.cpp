@@ -8,7 +8,6 @@
 #include "Scattering.h"
 #include "math/Color.h"
 #include "math/Frame.h"
-#include "math/RayOffset.h"
 #include "math/Warp.h"
 #include "sampling/LightPathSampler.h"
 #include "sampling/Sobol.h"
@@ -81,7 +80,7 @@ void LightingSetBuilder::sampleDirect(std::uint32_t frame, std::uint32_t setInde
         Vpl v;
         v.omni = s.isPoint;
         v.normal = s.normal;
-        v.position = s.isPoint ? s.position : offsetRayOrigin(s.position, s.normal);
+        v.position = s.isPoint ? s.position : scene_.offsetOrigin(s.position, s.normal);
         v.power = s.emitted / (s.pdf * float(n));
         set.direct.push_back(v);
     }
@@ -108,7 +107,7 @@ void LightingSetBuilder::walkLightPaths(std::uint32_t frame, std::uint32_t setIn
             beta = light.emitted * (4.0f * kPi) / light.pdf;
         } else {
             // Cosine-distributed emission: Le cos / (pdf_A cos / pi) = Le pi / pdf_A.
-            origin = offsetRayOrigin(light.position, light.normal);
+            origin = scene_.offsetOrigin(light.position, light.normal);
             direction = Frame(light.normal).toWorld(squareToCosineHemisphere(uDir));
             beta = light.emitted * kPi / light.pdf;
         }
@@ -121,7 +120,7 @@ void LightingSetBuilder::walkLightPaths(std::uint32_t frame, std::uint32_t setIn
             // No diffuse VPL on mirrors or glass: what they reflect is the caustic photons' job.
             if (lobes.hasDiffuse()) {
                 Vpl v;
-                v.position = offsetRayOrigin(hit.position, lobes.faceNormal);
+                v.position = scene_.offsetOrigin(hit.position, lobes.faceNormal);
                 v.normal = lobes.normal;
                 v.power = beta * lobes.diffuse * (kInvPi * invPaths);
                 set.indirect.push_back(v);
@@ -149,7 +148,7 @@ void LightingSetBuilder::walkLightPaths(std::uint32_t frame, std::uint32_t setIn
                 beta *= weight / probability;
             }
             if (isBlack(beta) || !isFinite(beta)) break;
-            origin = offsetRayOrigin(hit.position, lobes.faceNormal, direction);
+            origin = scene_.offsetOrigin(hit.position, lobes.faceNormal, direction);
         }
     }
 }

@@ -11,7 +11,6 @@
 #include "Scattering.h"
 #include "math/Color.h"
 #include "math/Frame.h"
-#include "math/RayOffset.h"
 #include "math/Warp.h"
 
 namespace igi {
@@ -72,7 +71,7 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
             // Next-event estimation toward one light sample.
             const LightSample ls =
                 lights_.sample(sampler.get(dim + 3), {sampler.get(dim + 4), sampler.get(dim + 5)});
-            const glm::vec3 shadowOrigin = offsetRayOrigin(hit.position, lobes.faceNormal);
+            const glm::vec3 shadowOrigin = scene_.offsetOrigin(hit.position, lobes.faceNormal);
             if (ls.pdf > 0) {
                 const glm::vec3 toLight = ls.position - shadowOrigin;
                 const float d2 = glm::dot(toLight, toLight);
@@ -82,7 +81,7 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
                 const float cosY = ls.isPoint ? 1.0f : -glm::dot(w, ls.normal);
                 if (d > 0 && cosX > 0 && cosY > 0 && glm::dot(w, lobes.faceNormal) > 0) {
                     const glm::vec3 target =
-                        ls.isPoint ? ls.position : offsetRayOrigin(ls.position, ls.normal);
+                        ls.isPoint ? ls.position : scene_.offsetOrigin(ls.position, ls.normal);
                     const float distance = glm::length(target - shadowOrigin);
                     if (!scene_.occluded(shadowOrigin, w, distance * (1.0f - 1e-4f), counters)) {
                         const glm::vec3 f = lobes.diffuse * kInvPi / probability;
@@ -108,7 +107,7 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
             beta *= weight / probability;
             lastWasDiffuse = false;
         }
-        origin = offsetRayOrigin(hit.position, lobes.faceNormal, direction);
+        origin = scene_.offsetOrigin(hit.position, lobes.faceNormal, direction);
         if (depth >= 3) {  // Russian roulette once the path has had its main bounces
             const float q = std::min(0.95f, maxComponent(beta));
             if (sampler.get(dim + 6) >= q) break;

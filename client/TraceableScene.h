@@ -10,6 +10,7 @@
 
 #include "EmbreeDevice.h"
 #include "SurfacePoint.h"
+#include "math/RayOffset.h"
 #include "scene/Scene.h"
 
 namespace igi {
@@ -48,6 +49,15 @@ class TraceableScene {
     /// Index of the first material made for the quad lights; quad light i uses this + i.
     std::uint32_t quadLightMaterialBase() const { return quadLightMaterialBase_; }
     std::uint32_t quadLightMesh() const { return std::uint32_t(meshes_.size() - 1); }
+
+    /// A ray origin moved off the surface at p (geometric normal n, toward n): see
+    /// offsetRayOrigin. The second form moves it to the side `direction` leaves to.
+    glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 n) const {
+        return offsetRayOrigin(p, n, diagonal_);
+    }
+    glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 n, glm::vec3 direction) const {
+        return offsetRayOrigin(p, n, direction, diagonal_);
+    }
 
     /// The scene's scale: the diagonal of its bounds. Clamping and photon radii are fractions
     /// of it, so they mean the same at every scale.

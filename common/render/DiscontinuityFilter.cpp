@@ -7,13 +7,22 @@
 
 namespace igi {
 
+namespace {
+
+// First row or column of a window of `size` around `centre`: centred (leaning left or up for
+// even sizes), then shifted to lie inside [0, extent). A shifted window still covers `size`
+// consecutive columns, hence every interleaving cell, which a truncated one would not.
+int windowStart(int centre, int size, int extent) {
+    const int start = centre - (size - 1) / 2;
+    return std::clamp(start, 0, std::max(0, extent - size));
+}
+
+}  // namespace
+
 void discontinuityFilterRows(const FrameBuffer& f, const DiscontinuityFilterSettings& s,
                              int rowBegin, int rowEnd, std::vector<glm::vec3>& out) {
-    // The window [x - left, x + right] has sizeX columns; for an even size it leans left, the
-    // same way for every pixel, so it always covers sizeX consecutive interleaving columns.
-    const int left = (s.sizeX - 1) / 2, right = s.sizeX - 1 - left;
-    const int up = (s.sizeY - 1) / 2, down = s.sizeY - 1 - up;
     for (int y = rowBegin; y < rowEnd; ++y) {
+        const int y0 = windowStart(y, s.sizeY, f.height), y1 = std::min(f.height, y0 + s.sizeY);
         for (int x = 0; x < f.width; ++x) {
             const std::size_t p = std::size_t(y) * f.width + x;
             const float d = f.depth[p];
@@ -21,12 +30,13 @@ void discontinuityFilterRows(const FrameBuffer& f, const DiscontinuityFilterSett
                 out[p] = f.unfiltered[p];
                 continue;
             }
+            const int x0 = windowStart(x, s.sizeX, f.width), x1 = std::min(f.width, x0 + s.sizeX);
             const glm::vec3 n = f.normal[p];
             const float tolerance = s.depthThreshold * d;
             glm::vec3 sum(0.0f);
             int count = 0;
-            for (int qy = std::max(0, y - up); qy <= std::min(f.height - 1, y + down); ++qy) {
-                for (int qx = std::max(0, x - left); qx <= std::min(f.width - 1, x + right); ++qx) {
+            for (int qy = y0; qy < y1; ++qy) {
+                for (int qx = x0; qx < x1; ++qx) {
                     const std::size_t q = std::size_t(qy) * f.width + qx;
                     if (std::fabs(f.depth[q] - d) > tolerance) continue;  // also rejects +inf
                     if (glm::dot(f.normal[q], n) < s.normalThreshold) continue;
@@ -34,8 +44,7 @@ void discontinuityFilterRows(const FrameBuffer& f, const DiscontinuityFilterSett
                     ++count;
                 }
             }
-            // The pixel itself always passes unless its normal is zero (no normal sent), in
-            // which case it stands alone.
+            // The pixel itself passes unless it has no normal; then it stands alone.
             const glm::vec3 irradiance = count > 0 ? sum / float(count) : f.irradiance[p];
             out[p] = f.reflectance[p] * irradiance + f.unfiltered[p];
         }

@@ -23,7 +23,9 @@ struct DiscontinuityFilterSettings {
     float normalThreshold = 0.9f;
 };
 
-/// Filters rows [rowBegin, rowEnd) of `frame` into `out` (width * height entries).
+/// Filters rows [rowBegin, rowEnd) of `frame` into `out` (width * height entries). At the
+/// image's borders the window is shifted inward rather than cut, so that it still covers every
+/// interleaving cell.
 void discontinuityFilterRows(const FrameBuffer& frame, const DiscontinuityFilterSettings& settings,
                              int rowBegin, int rowEnd, std::vector<glm::vec3>& out);
 

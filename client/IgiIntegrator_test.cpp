@@ -1,0 +1,70 @@
+#include "IgiIntegrator.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "TestScenes.h"
+#include "math/Color.h"
+#include "math/Warp.h"
+
+namespace igi {
+namespace {
+
+using testing::InProcessRenderer;
+
+// Inside a closed diffuse sphere of radius R and albedo rho with a point light of intensity I at
+// its centre, every point sees irradiance I / R^2 directly and the converged radiance is
+// rho I / (pi R^2 (1 - rho)) (direct plus all indirect bounces).
+Scene closedSphere(float radius, float albedo) {
+    Scene scene;
+    scene.materials.push_back(testing::diffuse(glm::vec3(albedo)));
+    scene.meshes.push_back(testing::makeIcosphere(5, radius, glm::vec3(0), 0));
+    scene.pointLights.push_back(
+        {"centre", glm::vec3(0), glm::vec3(radius * radius)});  // I / R^2 = 1
+    scene.camera = {glm::vec3(0), glm::vec3(1, 0.2f, 0.1f), glm::vec3(0, 1, 0), 70};
+    scene.image = {24, 18, 0};
+    scene.render.maxLightPathLength = 64;  // the analytic answer sums every bounce
+    scene.render.causticPhotons = 0;
+    return scene;
+}
+
+class ClosedSphere : public ::testing::TestWithParam<float> {};
+
+TEST_P(ClosedSphere, AccumulatedIgiIsWithinTwoPercentOfTheAnalyticRadiance) {
+    const float radius = GetParam(), albedo = 0.5f;
+    InProcessRenderer renderer(closedSphere(radius, albedo));
+    const Image image = renderer.render(24);
+    const double expected = albedo / (kPi * (1.0 - albedo));  // I / R^2 = 1
+    const glm::dvec3 mean = testing::meanOf(image);
+    EXPECT_NEAR(mean.x / expected, 1.0, 0.02) << "R = " << radius;
+    for (const auto& p : image.pixels) {
+        ASSERT_TRUE(isFinite(p));
+        EXPECT_NEAR(p.x / expected, 1.0, 0.1) << "R = " << radius;  // no pixel far off either
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scales, ClosedSphere, ::testing::Values(1e-3f, 1.0f, 1e3f));
+
+TEST(ClosedSphere, PathTracerConvergesToTheSameAnswer) {
+    Scene scene = closedSphere(1.0f, 0.5f);
+    scene.render.integrator = IntegratorKind::Path;
+    scene.render.pathSamples = 64;
+    scene.render.maxPathLength = 64;
+    InProcessRenderer renderer(scene);
+    const double expected = 0.5 / (kPi * 0.5);
+    EXPECT_NEAR(testing::meanOf(renderer.render(2)).x / expected, 1.0, 0.02);
+}
+
+TEST(ClosedSphere, DirectLightAloneIsExact) {
+    // Light paths of length 1 (the light only): no VPL, only the direct samples.
+    Scene scene = closedSphere(1.0f, 0.5f);
+    scene.render.maxLightPathLength = 1;
+    InProcessRenderer renderer(scene);
+    const double expected = 0.5 / kPi;
+    const Image image = renderer.render(1);
+    for (const auto& p : image.pixels) ASSERT_NEAR(p.x / expected, 1.0, 0.01);
+}
+
+}  // namespace
+}  // namespace igi

@@ -1,0 +1,103 @@
+#include "LightingSetBuilder.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "TestScenes.h"
+#include "math/Color.h"
+#include "math/Warp.h"
+
+namespace igi {
+namespace {
+
+using testing::InProcessRenderer;
+
+Scene diffuseRoomWithPointLight() {
+    Scene scene;
+    scene.materials.push_back(testing::diffuse(glm::vec3(0.6f)));
+    scene.meshes.push_back(testing::makeIcosphere(2, 3.0f, glm::vec3(0), 0));
+    scene.pointLights.push_back({"lamp", glm::vec3(0, 1, 0), glm::vec3(5)});
+    scene.camera = {glm::vec3(0, 0, 2), glm::vec3(0), glm::vec3(0, 1, 0), 60};
+    scene.image = {16, 16, 0};
+    return scene;
+}
+
+TEST(LightingSetBuilder, ASceneWithoutMirrorsOrGlassShootsNoCausticPhotons) {
+    InProcessRenderer r(diffuseRoomWithPointLight());
+    EXPECT_FALSE(r.renderer().builder().causticsActive());
+    for (std::uint32_t k = 0; k < 9; ++k) {
+        const LightingSet set = r.renderer().builder().build(0, k);
+        EXPECT_EQ(set.photonsShot, 0u);
+        EXPECT_TRUE(set.caustics.photons().empty());
+        EXPECT_FALSE(set.indirect.empty());
+    }
+}
+
+TEST(LightingSetBuilder, SameFrameAndSetGiveTheSameVplsOnEveryBuild) {
+    InProcessRenderer a(diffuseRoomWithPointLight()), b(diffuseRoomWithPointLight());
+    const LightingSet s1 = a.renderer().builder().build(7, 4),
+                      s2 = b.renderer().builder().build(7, 4);
+    ASSERT_EQ(s1.indirect.size(), s2.indirect.size());
+    for (std::size_t i = 0; i < s1.indirect.size(); ++i) {
+        EXPECT_EQ(s1.indirect[i].position, s2.indirect[i].position);
+        EXPECT_EQ(s1.indirect[i].power, s2.indirect[i].power);
+    }
+    const LightingSet other = a.renderer().builder().build(8, 4);
+    EXPECT_NE(other.indirect.front().position,
+              s1.indirect.front().position);  // new frame, new bit vectors
+}
+
+TEST(LightingSetBuilder, IndirectVplCountFollowsTheWantedNumber) {
+    // A closed room: every light path hits something, so the count is what Keller's walk plans.
+    Scene scene = diffuseRoomWithPointLight();
+    scene.render.indirectVpls = 18;
+    InProcessRenderer r(scene);
+    const auto& builder = r.renderer().builder();
+    std::uint32_t planned = 0;
+    for (std::uint32_t d = 0; d + 1 < std::uint32_t(scene.render.maxLightPathLength); ++d)
+        planned += builder.survivors(d);
+    EXPECT_GE(planned, 18u);
+    EXPECT_EQ(builder.build(0, 0).indirect.size(), planned);
+    EXPECT_EQ(builder.build(0, 0).direct.size(), 4u);
+}
+
+// A point light below a square mirror facing down, above a large diffuse floor: every photon
+// aimed at the mirror reflects onto the floor, so the photons' total power is the mirror's
+// reflectance times the intensity times the solid angle the mirror subtends.
+TEST(LightingSetBuilder, CausticPowerMatchesTheAnalyticFluxThroughAMirror) {
+    Scene scene;
+    scene.materials.push_back(testing::diffuse(glm::vec3(0.5f)));
+    Material mirror;
+    mirror.name = "mirror";
+    mirror.diffuse = glm::vec3(0.0f);
+    mirror.specular = glm::vec3(0.8f);
+    mirror.reflection = Reflection::Mirror;
+    scene.materials.push_back(mirror);
+    const float half = 0.5f, height = 1.0f;  // the mirror is 1 x 1, one unit above the light
+    scene.meshes.push_back(
+        testing::makeQuad(glm::vec3(-50, 0, 50), glm::vec3(100, 0, 0), glm::vec3(0, 0, -100), 0));
+    scene.meshes.push_back(testing::makeQuad(glm::vec3(-half, 2 * height, -half),
+                                             glm::vec3(0, 0, 2 * half), glm::vec3(2 * half, 0, 0),
+                                             1));
+    const float intensity = 3.0f;
+    scene.pointLights.push_back({"lamp", glm::vec3(0, height, 0), glm::vec3(intensity)});
+    scene.render.causticPhotons = 20000;
+    scene.image = {8, 8, 0};
+    InProcessRenderer r(scene);
+    ASSERT_TRUE(r.renderer().builder().causticsActive());
+    const LightingSet set = r.renderer().builder().build(0, 0);
+    glm::dvec3 total(0.0);
+    for (const auto& p : set.caustics.photons()) total += glm::dvec3(p.power);
+    // Solid angle of a 2a x 2b rectangle seen from distance d on its axis.
+    const double a = half, b = half, d = height;
+    const double omega = 4.0 * std::asin(a * b / std::sqrt((a * a + d * d) * (b * b + d * d)));
+    EXPECT_NEAR(total.x / (0.8 * intensity * omega), 1.0, 0.01);
+    // Photons are aimed at the cone of the mirror's bounding sphere; those that miss the square
+    // escape upward, so only part of them land, but those that do carry all the power.
+    EXPECT_GT(set.caustics.photons().size(), 5000u);
+    EXPECT_EQ(set.photonsShot, 20000u);
+}
+
+}  // namespace
+}  // namespace igi

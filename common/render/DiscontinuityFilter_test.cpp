@@ -1,0 +1,98 @@
+#include "render/DiscontinuityFilter.h"
+
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace igi {
+namespace {
+
+FrameBuffer flatPlane(int w, int h) {
+    FrameBuffer f;
+    f.reset(w, h);
+    for (std::size_t p = 0; p < f.depth.size(); ++p) {
+        f.depth[p] = 2.0f;
+        f.normal[p] = glm::vec3(0, 0, 1);
+        f.reflectance[p] = glm::vec3(0.5f);
+    }
+    return f;
+}
+
+std::vector<glm::vec3> filter(const FrameBuffer& f, DiscontinuityFilterSettings s) {
+    std::vector<glm::vec3> out(f.depth.size());
+    discontinuityFilterRows(f, s, 0, f.height, out);
+    return out;
+}
+
+// Interleaved sampling on a flat plane: pixel (x, y) shows set k = (y % 3) * 3 + x % 3, whose
+// irradiance is E_k everywhere. Filtered with a 3 x 3 window, every pixel, borders included,
+// must show the mean over all nine sets: the image that uses all sets in every pixel.
+TEST(DiscontinuityFilter, InterleavedFlatPlaneEqualsAllSetsInEveryPixel) {
+    const float e[9] = {1, 5, 2, 8, 3, 0.5f, 7, 4, 6};
+    float mean = 0;
+    for (float v : e) mean += v / 9;
+    FrameBuffer f = flatPlane(17, 11);
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x)
+            f.irradiance[std::size_t(y) * f.width + x] = glm::vec3(e[(y % 3) * 3 + x % 3]);
+    const auto out = filter(f, {3, 3, 0.05f, 0.9f});
+    for (std::size_t p = 0; p < out.size(); ++p)
+        ASSERT_NEAR(out[p].x, 0.5f * mean, 1e-5f) << "pixel " << p;
+}
+
+TEST(DiscontinuityFilter, NothingBleedsAcrossADepthEdge) {
+    FrameBuffer f = flatPlane(8, 6);
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x) {
+            const std::size_t p = std::size_t(y) * f.width + x;
+            const bool far = x >= 4;
+            f.depth[p] = far ? 5.0f : 2.0f;
+            f.irradiance[p] = glm::vec3(far ? 100.0f : 1.0f);
+        }
+    const auto out = filter(f, {3, 3, 0.05f, 0.9f});
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x)
+            EXPECT_FLOAT_EQ(out[std::size_t(y) * f.width + x].x, x >= 4 ? 50.0f : 0.5f)
+                << x << "," << y;
+}
+
+TEST(DiscontinuityFilter, NothingBleedsAcrossANormalEdgeAndMissesStayUnfiltered) {
+    FrameBuffer f = flatPlane(6, 6);
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x) {
+            const std::size_t p = std::size_t(y) * f.width + x;
+            if (y >= 3) {
+                f.normal[p] = glm::vec3(1, 0, 0);  // a wall meeting the floor
+                f.irradiance[p] = glm::vec3(10.0f);
+            } else {
+                f.irradiance[p] = glm::vec3(2.0f);
+            }
+        }
+    const std::size_t miss = 0;
+    f.depth[miss] = std::numeric_limits<float>::infinity();
+    f.unfiltered[miss] = glm::vec3(0.25f);
+    const auto out = filter(f, {3, 3, 0.05f, 0.9f});
+    EXPECT_FLOAT_EQ(out[miss].x, 0.25f);
+    for (int y = 0; y < f.height; ++y) {
+        for (int x = 0; x < f.width; ++x) {
+            const std::size_t p = std::size_t(y) * f.width + x;
+            if (p == miss) continue;
+            EXPECT_FLOAT_EQ(out[p].x, y >= 3 ? 5.0f : 1.0f) << x << "," << y;
+        }
+    }
+}
+
+TEST(DiscontinuityFilter, ReflectanceIsNotBlurredAndUnfilteredIsAdded) {
+    FrameBuffer f = flatPlane(5, 5);
+    for (std::size_t p = 0; p < f.depth.size(); ++p) {
+        f.irradiance[p] = glm::vec3(1.0f);
+        f.reflectance[p] = glm::vec3(p % 2 ? 0.9f : 0.1f);  // a fine texture
+        f.unfiltered[p] = glm::vec3(0.01f);
+    }
+    const auto out = filter(f, {3, 3, 0.05f, 0.9f});
+    for (std::size_t p = 0; p < out.size(); ++p)
+        EXPECT_FLOAT_EQ(out[p].x, (p % 2 ? 0.9f : 0.1f) + 0.01f);
+}
+
+}  // namespace
+}  // namespace igi

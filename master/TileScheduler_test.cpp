@@ -1,0 +1,112 @@
+#include "TileScheduler.h"
+
+#include <map>
+#include <set>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+namespace igi {
+namespace {
+
+std::vector<Tile> layout() {
+    return makeTiles(96, 96, 3, 3, 16);
+}  // 4 regions x 9 cells = 36 tiles
+
+TEST(TileScheduler, EveryTileOfAFrameIsHandedOutOnceThenTheFrameCompletes) {
+    TileScheduler s(layout(), 9);
+    s.openFrame(0);
+    std::set<std::uint32_t> given;
+    while (auto a = s.next(1)) {
+        ASSERT_FALSE(a->duplicate);
+        EXPECT_TRUE(given.insert(a->tile).second);
+        if (given.size() == layout().size()) break;
+    }
+    EXPECT_EQ(given.size(), layout().size());
+    EXPECT_TRUE(s.frameFullyAssigned(0));
+    EXPECT_FALSE(s.frameDone(0));
+    for (auto t : given) EXPECT_TRUE(s.complete(1, 0, t));
+    EXPECT_TRUE(s.frameDone(0));
+    EXPECT_FALSE(s.complete(1, 0, *given.begin()));  // a second result for a done tile is dropped
+}
+
+TEST(TileScheduler, ClientsStayOnTheirSetAndSpreadOverDifferentSets) {
+    const auto tiles = layout();
+    TileScheduler s(tiles, 9);
+    s.openFrame(0);
+    std::map<ClientId, std::set<int>> sets;
+    for (int round = 0; round < 12; ++round)
+        for (ClientId c : {1u, 2u, 3u}) {
+            auto a = s.next(c);
+            ASSERT_TRUE(a);
+            sets[c].insert(tiles[a->tile].setIndex(3));
+            s.complete(c, 0, a->tile);
+        }
+    // 36 tiles, 3 clients: each client needs 3 sets (4 tiles per set), and no two share one.
+    std::set<int> all;
+    for (auto& [c, ks] : sets) {
+        EXPECT_EQ(ks.size(), 3u) << "client " << c;
+        all.insert(ks.begin(), ks.end());
+    }
+    EXPECT_EQ(all.size(), 9u);
+}
+
+TEST(TileScheduler, ALeavingClientsTilesGoToOthers) {
+    TileScheduler s(layout(), 9);
+    s.openFrame(0);
+    std::vector<std::uint32_t> heldBy1;
+    for (int i = 0; i < 5; ++i) heldBy1.push_back(s.next(1)->tile);
+    EXPECT_EQ(s.inFlight(1), 5);
+    EXPECT_EQ(s.releaseClient(1), 5);
+    EXPECT_EQ(s.inFlight(1), 0);
+    std::set<std::uint32_t> given;
+    while (auto a = s.next(2)) {
+        given.insert(a->tile);
+        s.complete(2, 0, a->tile);
+        if (s.frameDone(0)) break;
+    }
+    for (auto t : heldBy1) EXPECT_TRUE(given.count(t));
+    EXPECT_TRUE(s.frameDone(0));
+    EXPECT_FALSE(s.complete(1, 0, heldBy1[0]));  // the departed client's late result is dropped
+}
+
+TEST(TileScheduler, OnlyAHolderCanCompleteATile) {
+    TileScheduler s(layout(), 9);
+    s.openFrame(0);
+    const auto a = s.next(1);
+    EXPECT_FALSE(s.complete(2, 0, a->tile));  // never given to client 2
+    EXPECT_FALSE(s.complete(1, 0, 9999));     // no such tile
+    EXPECT_FALSE(s.complete(1, 7, a->tile));  // no such frame
+    EXPECT_TRUE(s.complete(1, 0, a->tile));
+}
+
+TEST(TileScheduler, IdleClientsGetCopiesOfOldTilesFirstResultWins) {
+    TileScheduler s(makeTiles(6, 3, 3, 3, 1), 9);  // 2 regions x 9 cells = 18 tiles
+    s.openFrame(0);
+    std::vector<std::uint32_t> slow;
+    while (auto a = s.next(1)) slow.push_back(a->tile);  // the slow client holds everything
+    ASSERT_EQ(slow.size(), 18u);
+    EXPECT_FALSE(s.next(2, 10.0));  // too young to copy
+    const auto copy = s.next(2, 0.0);
+    ASSERT_TRUE(copy);
+    EXPECT_TRUE(copy->duplicate);
+    EXPECT_EQ(copy->tile, slow[0]);              // the oldest work first
+    EXPECT_TRUE(s.complete(2, 0, copy->tile));   // the copy's result wins
+    EXPECT_FALSE(s.complete(1, 0, copy->tile));  // the original's is dropped
+    EXPECT_EQ(s.inFlight(1), 17);
+}
+
+TEST(TileScheduler, PipelinedFramesTheOldestFirst) {
+    TileScheduler s(makeTiles(3, 3, 3, 3, 1), 9);  // 9 tiles of one pixel
+    s.openFrame(0);
+    for (int i = 0; i < 9; ++i) EXPECT_EQ(s.next(1)->frame, 0u);
+    s.openFrame(1);
+    const auto a = s.next(1);
+    EXPECT_EQ(a->frame, 1u);
+    EXPECT_EQ(s.releaseClient(1), 10);
+    EXPECT_EQ(s.next(2)->frame, 0u);  // released tiles of frame 0 come before frame 1's
+    EXPECT_THROW(s.openFrame(1), std::logic_error);
+}
+
+}  // namespace
+}  // namespace igi

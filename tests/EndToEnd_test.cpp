@@ -1,0 +1,139 @@
+// The whole system as users run it: a master and client processes on loopback, images read
+// back from disk.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "Process.h"
+#include "image/ImageIO.h"
+#include "math/Color.h"
+
+namespace igi {
+namespace {
+
+using namespace igi::testing;
+namespace fs = std::filesystem;
+
+ProcessResult runMaster(const fs::path& dir, const std::string& name, std::vector<std::string> args,
+                        double timeout = 300) {
+    std::vector<std::string> command = {(binDir() / "igi-master").string()};
+    command.insert(command.end(), args.begin(), args.end());
+    return runProcess(command, dir / (name + ".log"), timeout);
+}
+
+void expectFinite(const Image& image, const std::string& what) {
+    for (const auto& p : image.pixels)
+        ASSERT_TRUE(isFinite(p)) << what << " has a NaN or infinite pixel";
+}
+
+TEST(EndToEnd, TwoClientsRenderTheDefaultSceneExactlyAsOneDoes) {
+    const fs::path dir = scratchDir("default");
+    const std::string scene = (sourceDir() / "scenes/cornell/cornell.json").string();
+    const std::vector<std::string> common = {"--scene",  scene,        "--width",  "160",
+                                             "--height", "120",        "--frames", "3",
+                                             "--listen", "127.0.0.1:0"};
+    auto args2 = common;
+    args2.insert(args2.end(),
+                 {"--local-clients", "2", "--output", (dir / "two.exr").string(), "--output",
+                  (dir / "two.png").string(), "--stats-json", (dir / "two.json").string()});
+    auto args1 = common;
+    args1.insert(args1.end(), {"--local-clients", "1", "--output", (dir / "one.exr").string()});
+    const ProcessResult two = runMaster(dir, "two", args2), one = runMaster(dir, "one", args1);
+    ASSERT_EQ(two.exitCode, 0) << two.output;
+    ASSERT_EQ(one.exitCode, 0) << one.output;
+
+    const Image a = readImage(dir / "two.exr"), b = readImage(dir / "one.exr");
+    ASSERT_EQ(a.width, 160);
+    ASSERT_EQ(a.height, 120);
+    expectFinite(a, "two.exr");
+    expectFinite(b, "one.exr");
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        ASSERT_EQ(a.pixels[i], b.pixels[i]) << "pixel " << i % 160 << "," << i / 160 << " differs";
+
+    // The PNG is the same image, tone-mapped.
+    const Image png = readImage(dir / "two.png");
+    ASSERT_EQ(png.width, 160);
+    expectFinite(png, "two.png");
+
+    // The light is the brightest thing in view: the top middle of the image.
+    std::size_t brightest = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        if (luminance(a.pixels[i]) > luminance(a.pixels[brightest])) brightest = i;
+    const int bx = int(brightest % 160), by = int(brightest / 160);
+    EXPECT_LT(by, 20) << "brightest pixel at " << bx << "," << by;
+    EXPECT_NEAR(bx, 80, 20) << "brightest pixel at " << bx << "," << by;
+    // Walls are lit: the left wall is red, the right wall green.
+    const glm::vec3 left = a.at(20, 60), right = a.at(140, 60);
+    EXPECT_GT(left.x, 2 * left.y);
+    EXPECT_GT(right.y, 2 * right.x);
+
+    // Statistics: every frame, every pixel, both clients at work.
+    std::ifstream statsFile(dir / "two.json");
+    const auto stats = nlohmann::json::parse(statsFile);
+    ASSERT_EQ(stats["frames"].size(), 3u);
+    std::uint64_t tiles = 0;
+    for (const auto& f : stats["frames"]) {
+        EXPECT_EQ(f["pixels"], 160 * 120);
+        EXPECT_GT(f["rays"].get<std::uint64_t>(), 0u);
+        EXPECT_GT(f["wire_bytes"].get<std::uint64_t>(), 0u);
+        EXPECT_GT(f["seconds"].get<double>(), 0.0);
+        EXPECT_GT(f["vpls"].get<double>(), 4.0);
+        EXPECT_GT(f["caustic_photons"].get<double>(),
+                  0.0);  // the scene has a glass ball and a mirror
+        EXPECT_GT(f["shadow_rays"].get<std::uint64_t>(), 0u);
+        tiles += f["tiles"].get<std::uint64_t>();
+    }
+    ASSERT_EQ(stats["clients"].size(), 2u);
+    std::uint64_t clientTiles = 0;
+    for (const auto& c : stats["clients"]) {
+        EXPECT_GT(c["tiles"].get<std::uint64_t>(), 0u) << "a client did nothing";
+        clientTiles += c["tiles"].get<std::uint64_t>();
+    }
+    EXPECT_EQ(clientTiles, tiles);
+    EXPECT_GT(stats["fps"].get<double>(), 0.0);
+    fs::remove_all(dir);
+}
+
+TEST(EndToEnd, ABadSceneFileIsAClearErrorAndANonZeroExit) {
+    const fs::path dir = scratchDir("bad");
+    std::ofstream(dir / "bad.json")
+        << "{\n  \"camera\": {\"position\": [0, 1, 3], \"look_at\": [0, 1, 0],\n"
+           "             \"up\": [0, 1, 0], \"fov_y\": 40, \"zoom\": 2},\n"
+           "  \"meshes\": []\n}\n";
+    const ProcessResult r =
+        runMaster(dir, "bad", {"--scene", (dir / "bad.json").string(), "--local-clients", "1"}, 60);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("bad.json"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("/camera/zoom"), std::string::npos) << r.output;
+
+    std::ofstream(dir / "missing.json") << "{\"meshes\": [{\"file\": \"nowhere.obj\"}]}";
+    const ProcessResult m = runMaster(
+        dir, "missing", {"--scene", (dir / "missing.json").string(), "--local-clients", "1"}, 60);
+    EXPECT_NE(m.exitCode, 0);
+    EXPECT_NE(m.output.find("nowhere.obj"), std::string::npos) << m.output;
+    fs::remove_all(dir);
+}
+
+TEST(EndToEnd, ABareObjFromAnotherFolderRendersWithoutASharedDisk) {
+    // The clients get every byte from the master; the OBJ's MTL is found next to it.
+    const fs::path obj = sourceDir() / "../shared/scenes/cornell-box/CornellBox-Original.obj";
+    if (!fs::exists(obj)) GTEST_SKIP() << obj << " is not here";
+    const fs::path dir = scratchDir("bareobj");
+    const ProcessResult r =
+        runMaster(dir, "obj",
+                  {"--scene", obj.string(), "--local-clients", "1", "--width", "64", "--height",
+                   "64", "--output", (dir / "box.exr").string()});
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const Image image = readImage(dir / "box.exr");
+    expectFinite(image, "box.exr");
+    double sum = 0;
+    for (const auto& p : image.pixels) sum += luminance(p);
+    EXPECT_GT(sum / double(image.pixels.size()), 0.01);  // lit by its own emissive light
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace igi
