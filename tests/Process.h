@@ -15,6 +15,8 @@
 #include <thread>
 #include <vector>
 
+#include "util/TestPaths.h"
+
 extern char** environ;
 
 namespace igi::testing {
@@ -23,16 +25,6 @@ struct ProcessResult {
     int exitCode = -1;   ///< -1 if killed on timeout
     std::string output;  ///< stdout and stderr together
 };
-
-inline std::filesystem::path binDir() {
-    const char* dir = std::getenv("IGI_BIN_DIR");
-    return dir ? dir : "build/bin";
-}
-
-inline std::filesystem::path sourceDir() {
-    const char* dir = std::getenv("IGI_SOURCE_DIR");
-    return dir ? dir : ".";
-}
 
 /// A fresh empty folder for one test's files.
 inline std::filesystem::path scratchDir(const std::string& name) {

@@ -13,26 +13,18 @@
 #include "scene/FileSource.h"
 #include "scene/SceneError.h"
 #include "scene/SceneLoader.h"
+#include "util/TestPaths.h"
 
 namespace igi::test {
 
 /// common/scene/testdata in the source tree.
 inline std::filesystem::path testdataDir() {
-    if (const char* src = std::getenv("IGI_SOURCE_DIR")) {
-        return std::filesystem::path(src) / "common" / "scene" / "testdata";
-    }
-    return std::filesystem::path(__FILE__).parent_path() / "testdata";
+    return igi::testing::sourceDir() / "common" / "scene" / "testdata";
 }
 
-/// The public test scenes (/work/shared/scenes next to the project), if present.
+/// The public test scenes (../shared/scenes next to the project), if present.
 inline std::optional<std::filesystem::path> sharedScenesDir() {
-    std::filesystem::path dir;
-    if (const char* src = std::getenv("IGI_SOURCE_DIR")) {
-        dir = std::filesystem::path(src) / ".." / "shared" / "scenes";
-    } else {
-        dir = testdataDir() / ".." / ".." / ".." / ".." / "shared" / "scenes";
-    }
-    dir = dir.lexically_normal();
+    const auto dir = igi::testing::sharedScenesDir();
     if (!std::filesystem::is_directory(dir)) return std::nullopt;
     return dir;
 }
