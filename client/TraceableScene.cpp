@@ -220,6 +220,10 @@ std::vector<TraceableScene::WorldTriangle> TraceableScene::trianglesWhere(
     return result;
 }
 
+std::vector<TraceableScene::WorldTriangle> TraceableScene::triangles() const {
+    return trianglesWhere([](const Material&) { return true; });
+}
+
 std::vector<TraceableScene::WorldTriangle> TraceableScene::emissiveTriangles() const {
     return trianglesWhere([](const Material& m) { return m.isEmissive(); });
 }

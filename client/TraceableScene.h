@@ -40,12 +40,16 @@ class TraceableScene {
         std::uint32_t mesh;
         std::uint32_t triangle;
     };
+    /// Every triangle of the scene (quad lights included).
+    std::vector<WorldTriangle> triangles() const;
     /// Every triangle whose material emits (quad lights included, as two triangles each).
     std::vector<WorldTriangle> emissiveTriangles() const;
     /// Every triangle whose material is a mirror or glass.
     std::vector<WorldTriangle> specularTriangles() const;
 
     const std::vector<Material>& materials() const { return materials_; }
+    /// The top-level Embree scene, for benchmarks that trace it directly.
+    RTCScene embreeScene() const { return top_; }
     /// Index of the first material made for the quad lights; quad light i uses this + i.
     std::uint32_t quadLightMaterialBase() const { return quadLightMaterialBase_; }
     std::uint32_t quadLightMesh() const { return std::uint32_t(meshes_.size() - 1); }
