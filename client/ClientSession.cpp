@@ -161,10 +161,39 @@ void ClientSession::onTile(const proto::Header& header, const proto::TileAssign&
         if (newestFrame_ >= 2) renderer_->cache().evictBefore(newestFrame_ - 1);
     }
     const std::uint32_t frame = header.frame, epoch = header.epoch;
+    if (options_.replay) return replayTile(frame, epoch, a.tileId, tile);
+
     renderer_->render(pool_, frame, a.tileId, tile,
                       [this, frame, epoch](proto::TileResult&& result) {
                           connection_->send(result, frame, epoch);
                       });
+}
+
+}  // namespace igi
+
+namespace igi {
+
+void ClientSession::replayTile(std::uint32_t frame, std::uint32_t epoch, std::uint32_t tileId,
+                               const Tile& tile) {
+    {
+        std::lock_guard lock(replayMutex_);
+        auto it = recorded_.find(tileId);
+        if (it != recorded_.end()) {
+            std::vector<std::uint8_t> bytes = it->second;
+            proto::setHeaderFrameAndEpoch(bytes, frame, epoch);
+            connection_->sendEncoded(std::move(bytes));
+            return;
+        }
+    }
+    renderer_->render(
+        pool_, frame, tileId, tile, [this, frame, epoch, tileId](proto::TileResult&& result) {
+            std::vector<std::uint8_t> bytes = proto::encodeMessage(result, frame, epoch);
+            {
+                std::lock_guard lock(replayMutex_);
+                recorded_[tileId] = bytes;
+            }
+            connection_->sendEncoded(std::move(bytes));
+        });
 }
 
 }  // namespace igi

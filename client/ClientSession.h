@@ -2,8 +2,11 @@
 
 #include <atomic>
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <vector>
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>
@@ -23,6 +26,9 @@ struct ClientOptions {
     unsigned threads = 0;               ///< 0: every hardware thread
     double connectTimeoutSeconds = 30;  ///< keep trying to reach the master this long
     double readTimeoutSeconds = 30;     ///< a master silent this long is considered gone
+    /// Renders each tile once, then answers every later request for it with the recorded
+    /// result: a client as fast as the network, to measure the master's ceiling.
+    bool replay = false;
 };
 
 /// A render client's whole life: connect to the master, say hello, receive the scene, build
@@ -42,6 +48,9 @@ class ClientSession {
     void onClose(const std::string& reason);
     void onSceneData(proto::SceneData data);
     void onTile(const proto::Header& header, const proto::TileAssign& assign);
+    void replayTile(std::uint32_t frame, std::uint32_t epoch, std::uint32_t tileId,
+                    const Tile& tile);
+
     void scheduleHeartbeat();
 
     ClientOptions options_;
@@ -55,6 +64,8 @@ class ClientSession {
     std::atomic<bool> ready_{false};
     std::uint32_t newestFrame_ = 0;
     int exitCode_ = 1;
+    std::mutex replayMutex_;
+    std::map<std::uint32_t, std::vector<std::uint8_t>> recorded_;  ///< encoded results, by tile
     // Last, so it is destroyed (its threads joined) before the scene its tasks use.
     ThreadPool pool_;
 };

@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--log-level", logLevel, "trace, debug, info, warn, error")
         ->capture_default_str();
+    app.add_flag("--replay", options.replay,
+                 "render each tile once, then resend that result whenever the tile is asked for "
+                 "again (to measure how many pixels per second the master can take)");
     CLI11_PARSE(app, argc, argv);
 
     spdlog::set_level(spdlog::level::from_str(logLevel));

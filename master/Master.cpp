@@ -5,8 +5,10 @@
 
 #include <spdlog/spdlog.h>
 #include <boost/asio/ip/address.hpp>
+#include <boost/asio/post.hpp>
 #include <nlohmann/json.hpp>
 
+#include "Codec.h"
 #include "image/ImageIO.h"
 #include "render/Tile.h"
 #include "scene/RenderSettingsJson.h"
@@ -87,15 +89,26 @@ void Master::accept() {
             net::ConnectionOptions connectionOptions;
             connectionOptions.readTimeout =
                 std::chrono::milliseconds(long(options_.readTimeoutSeconds * 1000));
+            // Tile results are decoded on the pool, not on this thread.
+            connectionOptions.undecodedTypes = {proto::MessageType::TileResult};
             const ClientId id = nextClientId_++;
             Session& s = sessions_[id];
             s.id = id;
             s.connection = std::make_shared<net::Connection>(std::move(socket), connectionOptions);
             stats_.client(id).peer = s.connection->peer();
             spdlog::info("client {} connected from {}", id, s.connection->peer());
-            s.connection->start([this, id](const proto::Header& h,
-                                           proto::Message m) { onMessage(id, h, std::move(m)); },
-                                [this, id](const std::string& reason) { onClose(id, reason); });
+            s.connection->start(
+                [this, id](const proto::Header& h, proto::Message m) {
+                    onMessage(id, h, std::move(m));
+                },
+                [this, id](const std::string& reason) { onClose(id, reason); },
+                [this, id](const proto::Header& h, std::vector<std::uint8_t> payload) {
+                    auto it = sessions_.find(id);
+                    if (it == sessions_.end() || ending_) return;
+                    if (!it->second.ready)
+                        return refuse(it->second, "a tile result before the scene was ready");
+                    onTileResult(it->second, h, std::move(payload));
+                });
         }
         accept();
     });
@@ -111,8 +124,6 @@ void Master::onMessage(ClientId id, const proto::Header& header, proto::Message 
         refuse(s, "the first message must be Hello");
     } else if (auto* ready = std::get_if<proto::SceneReady>(&message)) {
         onSceneReady(s, *ready);
-    } else if (auto* result = std::get_if<proto::TileResult>(&message)) {
-        onTileResult(s, header, *result);
     } else if (auto* error = std::get_if<proto::Error>(&message)) {
         spdlog::warn("client {} reports: {}", id, error->reason);
     } else if (!std::holds_alternative<proto::Heartbeat>(message)) {
@@ -146,6 +157,7 @@ void Master::onSceneReady(Session& s, const proto::SceneReady& ready) {
     if (s.ready) return refuse(s, "a second SceneReady");
     s.ready = true;
     s.lastResult = Clock::now();
+    stats_.client(s.id).readySeconds = secondsSince(created_);
     spdlog::info("client {} ({}, {} threads) is ready: {} triangles built in {:.2f} s", s.id,
                  s.host, s.threads, ready.triangles, ready.buildSeconds);
     maybeStart();
@@ -175,9 +187,10 @@ void Master::openFramesAsNeeded() {
             scheduler_->frameFullyAssigned(nextFrameToOpen_ - 1))) {
         const std::uint32_t f = nextFrameToOpen_++;
         scheduler_->openFrame(f);
-        FrameRecord& record = frames_[f];
-        record.buffer.reset(scene_.image.width, scene_.image.height);
-        record.opened = Clock::now();
+        auto record = std::make_unique<FrameRecord>();
+        record->buffer.reset(scene_.image.width, scene_.image.height);
+        record->opened = Clock::now();
+        frames_[f] = std::move(record);
     }
 }
 
@@ -199,6 +212,7 @@ void Master::dispatch() {
             const auto a = scheduler_->next(id, minAge);
             if (!a) break;
             const Tile& t = scheduler_->layout()[a->tile];
+            stats_.noteAssignment(a->frame, id, t.setIndex(scene_.render.interleaveX));
             proto::TileAssign msg;
             msg.tileId = a->tile;
             msg.x0 = std::uint16_t(t.x0);
@@ -212,54 +226,112 @@ void Master::dispatch() {
     }
 }
 
-void Master::onTileResult(Session& s, const proto::Header& header, proto::TileResult& result) {
+void Master::onTileResult(Session& s, const proto::Header& header,
+                          std::vector<std::uint8_t> payload) {
     const auto& layout = scheduler_->layout();
-    if (result.tileId >= layout.size())
-        return refuse(
-            s, "a result for tile " + std::to_string(result.tileId) + ", which does not exist");
     if (header.frame >= nextFrameToOpen_)
         return refuse(s, "a result for frame " + std::to_string(header.frame) +
                              ", which was never handed out");
-    const Tile& tile = layout[result.tileId];
-    const RenderSettings& rs = scene_.render;
-    if (result.channels.count != tile.pixelCount(rs.interleaveX, rs.interleaveY))
-        return refuse(s, "a result with " + std::to_string(result.channels.count) +
-                             " pixels for a tile of " +
-                             std::to_string(tile.pixelCount(rs.interleaveX, rs.interleaveY)));
-    const double age = std::chrono::duration<double>(Clock::now() - s.lastResult).count();
-    s.lastResult = Clock::now();
-    if (age > 0)
-        s.tilesPerSecond = s.tilesPerSecond > 0 ? 0.8 * s.tilesPerSecond + 0.2 / std::max(age, 1e-4)
-                                                : 1.0 / std::max(age, 1e-4);
-    const bool first = scheduler_->complete(s.id, header.frame, result.tileId);
-    stats_.addTile(header.frame, s.id, result.stats, proto::kHeaderSize + header.payloadSize,
-                   std::uint32_t(result.channels.count), !first);
-    if (first) {
-        frames_.at(header.frame)
-            .buffer.scatter(tile, rs.interleaveX, rs.interleaveY, result.channels);
-        finishReadyFrames();
+    std::uint32_t tileId = 0;
+    try {
+        tileId = proto::peekTileId(payload);
+    } catch (const proto::ProtocolError& e) {
+        return refuse(s, std::string("protocol error: ") + e.what());
     }
+    if (tileId >= layout.size())
+        return refuse(s, "a result for tile " + std::to_string(tileId) + ", which does not exist");
+
+    const auto now = Clock::now();
+    const double age = std::chrono::duration<double>(now - s.lastResult).count();
+    s.lastResult = now;
+    s.tilesPerSecond = s.tilesPerSecond > 0 ? 0.8 * s.tilesPerSecond + 0.2 / std::max(age, 1e-4)
+                                            : 1.0 / std::max(age, 1e-4);
+    const std::uint64_t wireBytes = proto::kHeaderSize + header.payloadSize;
+    // The first copy of a tile wins; a later copy is dropped before it costs any decoding.
+    if (!scheduler_->complete(s.id, header.frame, tileId)) {
+        stats_.addDuplicate(header.frame, s.id, wireBytes);
+        return dispatch();
+    }
+    FrameRecord* record = frames_.at(header.frame).get();
+    ++record->decoding;
+    const Tile tile = layout[tileId];
+    const RenderSettings& rs = scene_.render;
+    pool_.submit([this, id = s.id, header, tileId, tile, n = rs.interleaveX, m = rs.interleaveY,
+                  record, wireBytes, payload = std::move(payload)] {
+        const auto start = Clock::now();
+        std::string error;
+        proto::TileStats tileStats;
+        try {
+            auto result = std::get<proto::TileResult>(proto::decodeMessage(header, payload));
+            if (result.channels.count != tile.pixelCount(n, m))
+                throw proto::ProtocolError(
+                    "a result with " + std::to_string(result.channels.count) +
+                    " pixels for a tile of " + std::to_string(tile.pixelCount(n, m)));
+            record->buffer.scatter(tile, n, m, result.channels);
+            tileStats = result.stats;
+        } catch (const std::exception& e) {
+            error = std::string("bad tile result: ") + e.what();
+        }
+        const double seconds = secondsSince(start);
+        boost::asio::post(io_, [=, this] {
+            onTileDecoded(id, header.frame, tileId, error, tileStats, wireBytes, seconds);
+        });
+    });
     dispatch();
 }
 
-void Master::finishReadyFrames() {
-    while (nextFrameToFinish_ < nextFrameToOpen_ && scheduler_->frameDone(nextFrameToFinish_)) {
-        const std::uint32_t f = nextFrameToFinish_++;
-        FrameRecord& record = frames_.at(f);
-        const auto start = Clock::now();
-        compositor_->composite(record.buffer);
-        FrameStats& fs = stats_.frame(f);
-        fs.compositeSeconds = secondsSince(start);
-        fs.seconds = secondsSince(record.opened);
-        spdlog::info("{}", stats_.summaryLine(f));
-        scheduler_->closeFrame(f);
-        frames_.erase(f);
-        if (nextFrameToFinish_ == std::uint32_t(options_.frames)) {
-            renderEnd_ = Clock::now();
-            endSession(0);
-            return;
-        }
+void Master::onTileDecoded(ClientId id, std::uint32_t frame, std::uint32_t tile,
+                           const std::string& error, const proto::TileStats& tileStats,
+                           std::uint64_t wireBytes, double seconds) {
+    FrameRecord& record = *frames_.at(frame);
+    --record.decoding;
+    record.decodeSeconds += seconds;
+    if (!error.empty()) {
+        // The tile goes to someone else; the client that sent garbage goes.
+        scheduler_->reopen(frame, tile);
+        auto it = sessions_.find(id);
+        if (it != sessions_.end()) refuse(it->second, error);
+        return dispatch();
     }
+    const Tile& t = scheduler_->layout()[tile];
+    stats_.addTile(
+        frame, id, tileStats, wireBytes,
+        std::uint32_t(t.pixelCount(scene_.render.interleaveX, scene_.render.interleaveY)));
+    finishReadyFrames();
+}
+
+void Master::finishReadyFrames() {
+    // Frames are composited one at a time, in order: accumulation adds them in sequence.
+    if (compositing_ || ending_ || nextFrameToFinish_ >= nextFrameToOpen_) return;
+    const std::uint32_t f = nextFrameToFinish_;
+    FrameRecord* record = frames_.at(f).get();
+    if (!scheduler_->frameDone(f) || record->decoding > 0) return;
+    compositing_ = true;
+    pool_.submit([this, f, record] {
+        const auto start = Clock::now();
+        compositor_->composite(record->buffer);
+        const double seconds = secondsSince(start);
+        boost::asio::post(io_, [this, f, seconds] { onComposited(f, seconds); });
+    });
+}
+
+void Master::onComposited(std::uint32_t f, double seconds) {
+    compositing_ = false;
+    FrameStats& fs = stats_.frame(f);
+    fs.compositeSeconds = seconds;
+    fs.decodeSeconds = frames_.at(f)->decodeSeconds;
+    fs.seconds = secondsSince(frames_.at(f)->opened);
+    spdlog::info("{}", stats_.summaryLine(f));
+    scheduler_->closeFrame(f);
+    frames_.erase(f);
+    ++nextFrameToFinish_;
+    if (nextFrameToFinish_ == std::uint32_t(options_.frames)) {
+        renderEnd_ = Clock::now();
+        endSession(0);
+        return;
+    }
+    finishReadyFrames();
+    dispatch();
 }
 
 void Master::onClose(ClientId id, const std::string& reason) {
@@ -268,6 +340,7 @@ void Master::onClose(ClientId id, const std::string& reason) {
     ClientStats& c = stats_.client(id);
     c.left = true;
     c.leaveReason = reason;
+    c.leftSeconds = secondsSince(created_);
     const int released = started_ && !ending_ ? scheduler_->releaseClient(id) : 0;
     if (!ending_)
         spdlog::warn("client {} left ({}); {} of its tiles go to others", id, reason, released);
@@ -336,9 +409,11 @@ int Master::run() {
         const std::string port = std::to_string(acceptor_.local_endpoint().port());
         const std::string host =
             options_.listenHost == "0.0.0.0" ? "127.0.0.1" : options_.listenHost;
-        localClients_.start(LocalClients::clientExecutableBesideSelf(),
-                            {"--connect", host + ":" + port, "--threads", std::to_string(threads),
-                             "--log-level", options_.clientLogLevel},
+        std::vector<std::string> args = {"--connect",   host + ":" + port,
+                                         "--threads",   std::to_string(threads),
+                                         "--log-level", options_.clientLogLevel};
+        if (options_.replayClients) args.push_back("--replay");
+        localClients_.start(LocalClients::clientExecutableBesideSelf(), args,
                             options_.localClients);
     }
     scheduleTick();
@@ -351,9 +426,10 @@ int Master::run() {
         writeImage(path, image, scene_.image.exposure);
         spdlog::info("wrote {}", path.string());
     }
-    const double seconds = std::chrono::duration<double>(renderEnd_ - renderStart_).count();
-    spdlog::info("{} frames in {:.2f} s: {:.2f} fps", options_.frames, seconds,
-                 stats_.fps(seconds));
+    const double start = std::chrono::duration<double>(renderStart_ - created_).count();
+    const double end = std::chrono::duration<double>(renderEnd_ - created_).count();
+    spdlog::info("{} frames in {:.2f} s: {:.2f} fps", options_.frames, end - start,
+                 stats_.fps(end - start));
     if (!options_.statsJson.empty()) {
         stats_.writeJson(
             options_.statsJson,
@@ -361,8 +437,9 @@ int Master::run() {
              {"width", std::to_string(scene_.image.width)},
              {"height", std::to_string(scene_.image.height)},
              {"integrator", scene_.render.integrator == IntegratorKind::Path ? "path" : "igi"}},
-            seconds);
+            start, end);
     }
+
     return 0;
 }
 

@@ -53,6 +53,8 @@ class Master {
     struct FrameRecord {
         FrameBuffer buffer;
         std::chrono::steady_clock::time_point opened;
+        int decoding = 0;          ///< tile results being decoded on the pool
+        double decodeSeconds = 0;  ///< pool time spent decoding and scattering its tiles
     };
 
     void loadScene();
@@ -62,7 +64,11 @@ class Master {
     void onClose(ClientId id, const std::string& reason);
     void onHello(Session& s, const proto::Hello& hello);
     void onSceneReady(Session& s, const proto::SceneReady& ready);
-    void onTileResult(Session& s, const proto::Header& header, proto::TileResult& result);
+    void onTileResult(Session& s, const proto::Header& header, std::vector<std::uint8_t> payload);
+    void onTileDecoded(ClientId id, std::uint32_t frame, std::uint32_t tile,
+                       const std::string& error, const proto::TileStats& tileStats,
+                       std::uint64_t wireBytes, double seconds);
+    void onComposited(std::uint32_t frame, double seconds);
     void refuse(Session& s, const std::string& reason);
 
     void maybeStart();
@@ -86,7 +92,8 @@ class Master {
     Statistics stats_;
     LocalClients localClients_;
     std::map<ClientId, Session> sessions_;
-    std::map<std::uint32_t, FrameRecord> frames_;
+    std::map<std::uint32_t, std::unique_ptr<FrameRecord>> frames_;
+    bool compositing_ = false;
     ClientId nextClientId_ = 1;
     std::uint32_t nextFrameToOpen_ = 0;
     std::uint32_t nextFrameToFinish_ = 0;

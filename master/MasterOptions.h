@@ -22,6 +22,7 @@ struct MasterOptions {
     double waitSeconds = 60;              ///< for the clients to connect and build the scene
     double readTimeoutSeconds = 30;       ///< a client silent this long is dropped
     std::string clientLogLevel = "info";  ///< passed to local clients
+    bool replayClients = false;  ///< local clients replay recorded tiles (igi-client --replay)
     /// Render settings from the command line, as a JSON object in the scene file's "render"
     /// syntax (so both are validated the same way), plus image overrides.
     std::string renderOverridesJson = "{}";

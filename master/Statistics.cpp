@@ -21,27 +21,35 @@ ClientStats& Statistics::client(ClientId id) {
 }
 
 void Statistics::addTile(std::uint32_t frameIndex, ClientId clientId, const proto::TileStats& tile,
-                         std::uint64_t wireBytes, std::uint32_t pixels, bool duplicate) {
+                         std::uint64_t wireBytes, std::uint32_t pixels) {
     FrameStats& f = frame(frameIndex);
     ClientStats& c = client(clientId);
     f.rays += tile.rays;
     f.shadowRays += tile.shadowRays;
     f.wireBytes += wireBytes;
     f.setsBuilt += tile.setsBuilt;
+    f.pixels += pixels;
+    ++f.tiles;
     c.rays += tile.rays;
     c.bytes += wireBytes;
     c.renderSeconds += tile.renderSeconds;
-    if (duplicate) {
-        ++f.duplicateTiles;
-        return;
-    }
     ++c.tiles;
-    ++f.tiles;
-    f.pixels += pixels;
     vplSum_[frameIndex] += tile.vpls;
     photonSum_[frameIndex] += tile.causticPhotons;
     f.vplsPerSet = double(vplSum_[frameIndex]) / f.tiles;
     f.photonsPerSet = double(photonSum_[frameIndex]) / f.tiles;
+}
+
+void Statistics::addDuplicate(std::uint32_t frameIndex, ClientId clientId,
+                              std::uint64_t wireBytes) {
+    FrameStats& f = frame(frameIndex);
+    ++f.duplicateTiles;
+    f.wireBytes += wireBytes;
+    client(clientId).bytes += wireBytes;
+}
+
+void Statistics::noteAssignment(std::uint32_t frameIndex, ClientId clientId, int k) {
+    client(clientId).setsByFrame[frameIndex].insert(k);
 }
 
 double Statistics::fps(double totalSeconds) const {
@@ -56,20 +64,25 @@ std::string Statistics::summaryLine(std::uint32_t index) const {
     const double bpp = f.pixels ? double(f.wireBytes) / double(f.pixels) : 0.0;
     return fmt::format(
         "frame {:4d}: {:7.1f} ms, {:6.1f} Mrays/s, {:5.1f} shadow rays/px, {:4.2f} B/px, "
-        "{} tiles ({} duplicate), {} sets built, filter+accumulate {:.1f} ms",
+        "{} tiles ({} duplicate), {} sets built, master decode {:.1f} ms + filter/accumulate "
+        "{:.1f} ms",
         f.index, f.seconds * 1e3, mrays, f.pixels ? double(f.shadowRays) / double(f.pixels) : 0.0,
-        bpp, f.tiles, f.duplicateTiles, f.setsBuilt, f.compositeSeconds * 1e3);
+        bpp, f.tiles, f.duplicateTiles, f.setsBuilt, f.decodeSeconds * 1e3,
+        f.compositeSeconds * 1e3);
 }
 
 void Statistics::writeJson(const std::filesystem::path& path,
-                           const std::map<std::string, std::string>& session,
-                           double totalSeconds) const {
+                           const std::map<std::string, std::string>& session, double renderStart,
+                           double renderEnd) const {
+    const double totalSeconds = renderEnd - renderStart;
     nlohmann::json frames = nlohmann::json::array();
     for (const auto& [index, f] : frames_) {
         frames.push_back(
             {{"index", f.index},
              {"seconds", f.seconds},
              {"composite_seconds", f.compositeSeconds},
+             {"decode_seconds", f.decodeSeconds},
+
              {"rays", f.rays},
              {"shadow_rays", f.shadowRays},
              {"shadow_rays_per_pixel", f.pixels ? double(f.shadowRays) / double(f.pixels) : 0.0},
@@ -84,16 +97,31 @@ void Statistics::writeJson(const std::filesystem::path& path,
     }
     nlohmann::json clients = nlohmann::json::array();
     for (const auto& [id, c] : clients_) {
-        clients.push_back({{"id", c.id},
-                           {"host", c.host},
-                           {"peer", c.peer},
-                           {"threads", c.threads},
-                           {"tiles", c.tiles},
-                           {"rays", c.rays},
-                           {"bytes", c.bytes},
-                           {"render_seconds", c.renderSeconds},
-                           {"left", c.left},
-                           {"leave_reason", c.leaveReason}});
+        // Busy: its threads' render time over its thread count; idle: the rest of the time it
+        // was there while frames were rendered.
+        const double from = std::max(renderStart, c.readySeconds);
+        const double to = c.leftSeconds >= 0 ? std::min(renderEnd, c.leftSeconds) : renderEnd;
+        const double busy = c.renderSeconds / std::max(1u, c.threads);
+        std::size_t sets = 0;
+        for (const auto& [frame, ks] : c.setsByFrame) sets += ks.size();
+        clients.push_back(
+            {{"id", c.id},
+             {"host", c.host},
+             {"peer", c.peer},
+             {"threads", c.threads},
+             {"tiles", c.tiles},
+             {"rays", c.rays},
+             {"bytes", c.bytes},
+             {"render_seconds", c.renderSeconds},
+             {"busy_seconds", busy},
+             {"idle_seconds", std::max(0.0, to - from - busy)},
+             {"frames", c.setsByFrame.size()},
+             {"first_frame",
+              c.setsByFrame.empty() ? -1 : std::int64_t(c.setsByFrame.begin()->first)},
+             {"distinct_sets_per_frame",
+              c.setsByFrame.empty() ? 0.0 : double(sets) / double(c.setsByFrame.size())},
+             {"left", c.left},
+             {"leave_reason", c.leaveReason}});
     }
     nlohmann::json root{{"frames", frames},
                         {"clients", clients},

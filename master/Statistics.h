@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@ struct FrameStats {
     std::uint32_t index = 0;
     double seconds = 0;           ///< from the frame's first tile handed out to its image
     double compositeSeconds = 0;  ///< master time in the discontinuity buffer and accumulation
+    double decodeSeconds = 0;     ///< master time decoding tile results (summed over threads)
     std::uint64_t rays = 0;
     std::uint64_t shadowRays = 0;
     std::uint64_t wireBytes = 0;  ///< tile results received for it, headers included
@@ -36,9 +38,12 @@ struct ClientStats {
     std::uint64_t tiles = 0;
     std::uint64_t rays = 0;
     std::uint64_t bytes = 0;
-    double renderSeconds = 0;
+    double renderSeconds = 0;  ///< its threads' busy time, summed over threads
+    double readySeconds = 0;   ///< when it was ready, from the master's start
+    double leftSeconds = -1;   ///< when it left, or -1
     bool left = false;
     std::string leaveReason;
+    std::map<std::uint32_t, std::set<int>> setsByFrame;  ///< interleaving sets it got, per frame
 };
 
 /// Collects statistics for --stats-json and the console.
@@ -46,12 +51,19 @@ class Statistics {
   public:
     FrameStats& frame(std::uint32_t index);
     ClientStats& client(ClientId id);
+    /// A tile result that completed its tile.
     void addTile(std::uint32_t frame, ClientId client, const proto::TileStats& tile,
-                 std::uint64_t wireBytes, std::uint32_t pixels, bool duplicate);
+                 std::uint64_t wireBytes, std::uint32_t pixels);
+    /// A copy of a tile that another client finished first: dropped, but it cost bytes.
+    void addDuplicate(std::uint32_t frame, ClientId client, std::uint64_t wireBytes);
+    /// A tile of interleaving set k handed to a client.
+    void noteAssignment(std::uint32_t frame, ClientId client, int k);
 
-    /// Writes {"frames": [...], "clients": [...], "fps": ..., "session": {...}}.
+    /// Writes {"frames": [...], "clients": [...], "fps": ..., "session": {...}}. Times are
+    /// seconds from the master's start; rendering ran from renderStart to renderEnd.
     void writeJson(const std::filesystem::path& path,
-                   const std::map<std::string, std::string>& session, double totalSeconds) const;
+                   const std::map<std::string, std::string>& session, double renderStart,
+                   double renderEnd) const;
     /// One line for people watching.
     std::string summaryLine(std::uint32_t frame) const;
     double fps(double totalSeconds) const;

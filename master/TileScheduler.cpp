@@ -112,6 +112,18 @@ bool TileScheduler::complete(ClientId client, std::uint32_t frame, std::uint32_t
     return true;
 }
 
+void TileScheduler::reopen(std::uint32_t frame, std::uint32_t tile) {
+    auto it = frames_.find(frame);
+    if (it == frames_.end() || tile >= it->second.tiles.size()) return;
+    FrameState& f = it->second;
+    TileState& t = f.tiles[tile];
+    if (t.state != State::Done) return;
+    t.state = State::Pending;
+    --f.done;
+    f.pendingBySet[std::size_t(setQueue_[tile])].push_front(tile);
+    ++f.pending;
+}
+
 int TileScheduler::releaseClient(ClientId client) {
     int released = 0;
     auto held = held_.find(client);

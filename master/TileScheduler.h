@@ -44,6 +44,8 @@ class TileScheduler {
     /// A result arrived. True if it completes the tile (the first copy); false if the tile was
     /// already done or is unknown (then the result must be dropped).
     bool complete(ClientId client, std::uint32_t frame, std::uint32_t tile);
+    /// A completed tile turned out unusable (its result failed to decode): it is pending again.
+    void reopen(std::uint32_t frame, std::uint32_t tile);
     /// The client is gone: tiles only it held become pending again. Returns how many.
     int releaseClient(ClientId client);
     /// Forgets a finished frame.

@@ -110,3 +110,26 @@ TEST(TileScheduler, PipelinedFramesTheOldestFirst) {
 
 }  // namespace
 }  // namespace igi
+
+namespace igi {
+namespace {
+
+TEST(TileScheduler, AReopenedTileIsHandedOutAgainAndTheFrameWaitsForIt) {
+    TileScheduler s(makeTiles(3, 3, 3, 3, 1), 9);
+    s.openFrame(0);
+    std::vector<std::uint32_t> tiles;
+    while (auto a = s.next(1)) tiles.push_back(a->tile);
+    for (auto t : tiles) s.complete(1, 0, t);
+    ASSERT_TRUE(s.frameDone(0));
+    s.reopen(0, tiles[3]);
+    EXPECT_FALSE(s.frameDone(0));
+    const auto again = s.next(2);
+    ASSERT_TRUE(again);
+    EXPECT_EQ(again->tile, tiles[3]);
+    EXPECT_FALSE(again->duplicate);
+    EXPECT_TRUE(s.complete(2, 0, tiles[3]));
+    EXPECT_TRUE(s.frameDone(0));
+}
+
+}  // namespace
+}  // namespace igi

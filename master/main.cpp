@@ -103,6 +103,9 @@ int main(int argc, char** argv) {
         {"--seed", "seed", true, "session seed of every random bit vector"},
     };
     for (auto& n : numerics) n.option = app.add_option(n.flag, n.value, n.help);
+    app.add_flag(
+        "--replay-clients", o.replayClients,
+        "local clients render each tile once and then resend it: measures the master's ceiling");
     bool noAccumulate = false;
     app.add_flag("--no-accumulate", noAccumulate,
                  "show each frame alone instead of their running mean");

@@ -1,6 +1,7 @@
 #include "net/Connection.h"
 
 #include <algorithm>
+#include <utility>
 
 #include <spdlog/spdlog.h>
 #include <boost/asio/bind_executor.hpp>
@@ -40,17 +41,19 @@ Connection::Connection(boost::asio::ip::tcp::socket socket, ConnectionOptions op
       options_(options),
       peer_(describePeer(socket_)) {}
 
-void Connection::start(MessageHandler onMessage, CloseHandler onClose) {
-    boost::asio::dispatch(strand_, [self = shared_from_this(), onMessage = std::move(onMessage),
-                                    onClose = std::move(onClose)]() mutable {
-        if (self->started_ || self->closed_) return;
-        self->started_ = true;
-        self->onMessage_ = std::move(onMessage);
-        self->onClose_ = std::move(onClose);
-        self->restartReadDeadline();
-        self->waitForReadDeadline();
-        self->readHeader();
-    });
+void Connection::start(MessageHandler onMessage, CloseHandler onClose, RawHandler onRaw) {
+    boost::asio::dispatch(strand_,
+                          [self = shared_from_this(), onMessage = std::move(onMessage),
+                           onClose = std::move(onClose), onRaw = std::move(onRaw)]() mutable {
+                              if (self->started_ || self->closed_) return;
+                              self->started_ = true;
+                              self->onMessage_ = std::move(onMessage);
+                              self->onClose_ = std::move(onClose);
+                              self->onRaw_ = std::move(onRaw);
+                              self->restartReadDeadline();
+                              self->waitForReadDeadline();
+                              self->readHeader();
+                          });
 }
 
 // ---- reading ----
@@ -105,6 +108,17 @@ void Connection::onPayloadChunk(const boost::system::error_code& ec, std::size_t
 }
 
 void Connection::deliver() {
+    const auto& raw = options_.undecodedTypes;
+    if (onRaw_ && std::find(raw.begin(), raw.end(), header_.type) != raw.end()) {
+        ++messagesReceived_;
+        try {
+            onRaw_(header_, std::exchange(payload_, {}));
+        } catch (const std::exception& e) {
+            return closeNow(std::string("message handler failed: ") + e.what(), CloseKind::Problem);
+        }
+        if (!closed_) readHeader();
+        return;
+    }
     proto::Message message;
     try {
         message = proto::decodeMessage(header_, payload_);
@@ -159,6 +173,14 @@ void Connection::waitForReadDeadline() {
 void Connection::send(const proto::Message& message, std::uint32_t frame, std::uint32_t epoch) {
     if (!open_) return;  // it would be dropped anyway: spare the encoding
     std::vector<std::uint8_t> bytes = proto::encodeMessage(message, frame, epoch);
+    queuedBytes_ += bytes.size();
+    boost::asio::post(strand_, [self = shared_from_this(), bytes = std::move(bytes)]() mutable {
+        self->enqueue(std::move(bytes));
+    });
+}
+
+void Connection::sendEncoded(std::vector<std::uint8_t> bytes) {
+    if (!open_) return;
     queuedBytes_ += bytes.size();
     boost::asio::post(strand_, [self = shared_from_this(), bytes = std::move(bytes)]() mutable {
         self->enqueue(std::move(bytes));
@@ -236,6 +258,7 @@ void Connection::closeNow(const std::string& reason, CloseKind kind) {
     CloseHandler onClose = std::move(onClose_);
     onClose_ = nullptr;
     onMessage_ = nullptr;
+    onRaw_ = nullptr;
     if (onClose) onClose(reason);
 }
 

@@ -26,6 +26,9 @@ struct ConnectionOptions {
     /// waits for a header or is in the middle of a payload. Keeping an idle connection alive
     /// with heartbeats is the owner's business.
     std::chrono::milliseconds readTimeout{30000};
+    /// Messages of these types reach the owner undecoded (RawHandler), so that it can decode
+    /// them on other threads: the master decodes tile results on all its cores.
+    std::vector<proto::MessageType> undecodedTypes;
 };
 
 /// One framed TCP connection, used by master and client alike (after Boost.Beast's session
@@ -42,18 +45,24 @@ class Connection : public std::enable_shared_from_this<Connection> {
   public:
     using MessageHandler = std::function<void(const proto::Header&, proto::Message)>;
     using CloseHandler = std::function<void(const std::string& reason)>;
+    using RawHandler = std::function<void(const proto::Header&, std::vector<std::uint8_t> payload)>;
 
     explicit Connection(boost::asio::ip::tcp::socket socket, ConnectionOptions options = {});
     Connection(const Connection&) = delete;
     Connection& operator=(const Connection&) = delete;
 
-    /// Starts reading. Call once; the handlers are called on the strand.
-    void start(MessageHandler onMessage, CloseHandler onClose);
+    /// Starts reading. Call once; the handlers are called on the strand. Messages of the types
+    /// in ConnectionOptions::undecodedTypes go to `onRaw` with their payload as received (the
+    /// header is checked; the payload is the owner's to decode and validate).
+    void start(MessageHandler onMessage, CloseHandler onClose, RawHandler onRaw = nullptr);
 
     /// Encodes the message on the calling thread (throws ProtocolError if it exceeds its
     /// type's limit) and queues it; one write is in flight at a time, the rest wait in order.
     /// Messages sent after the connection closed are dropped.
     void send(const proto::Message& message, std::uint32_t frame, std::uint32_t epoch);
+
+    /// Queues a message encoded earlier (header and payload), e.g. a recorded result replayed.
+    void sendEncoded(std::vector<std::uint8_t> bytes);
 
     /// Closes now; what is still queued is dropped.
     void close(std::string reason);
@@ -99,6 +108,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
     // Strand-only state.
     MessageHandler onMessage_;
     CloseHandler onClose_;
+    RawHandler onRaw_;
     bool started_ = false;
     bool closed_ = false;
     std::array<std::uint8_t, proto::kHeaderSize> headerBytes_{};

@@ -266,7 +266,7 @@ TEST(Connection, ThousandMessagesFromTwoThreadsArriveCompleteAndInOrder) {
 TEST(Connection, ReadTimeoutCloses) {
     Loop loop;
     auto [s, c] = socketPair(loop.io);
-    auto server = std::make_shared<Connection>(std::move(s), ConnectionOptions{100ms});
+    auto server = std::make_shared<Connection>(std::move(s), ConnectionOptions{100ms, {}});
     Inbox serverInbox;
     auto closed = serverInbox.closed.get_future();
     serverInbox.start(*server);
@@ -311,6 +311,47 @@ TEST(Connection, EncodingErrorsReachTheCaller) {
     auto client = std::make_shared<Connection>(std::move(c));
     EXPECT_THROW(client->send(proto::Error{std::string(100000, 'x')}, 0, 0), proto::ProtocolError);
     EXPECT_EQ(client->queuedBytes(), 0u);
+}
+
+}  // namespace
+}  // namespace igi::net
+
+namespace igi::net {
+namespace {
+
+TEST(Connection, UndecodedTypesReachTheRawHandlerAndOthersAreDecoded) {
+    Loop loop(1);
+    auto [s, c] = socketPair(loop.io);
+    ConnectionOptions options;
+    options.undecodedTypes = {proto::MessageType::TileResult};
+    auto server = std::make_shared<Connection>(std::move(s), options);
+    auto client = std::make_shared<Connection>(std::move(c));
+    std::promise<std::pair<proto::Header, std::vector<std::uint8_t>>> raw;
+    std::promise<proto::MessageType> decoded;
+    server->start([&](const proto::Header& h, proto::Message) { decoded.set_value(h.type); },
+                  [](const std::string&) {},
+                  [&](const proto::Header& h, std::vector<std::uint8_t> p) {
+                      raw.set_value({h, std::move(p)});
+                  });
+    client->start([](const proto::Header&, proto::Message) {}, [](const std::string&) {});
+
+    proto::TileResult result;
+    result.tileId = 17;
+    result.channels.resize(3, kUnfiltered);
+    result.channels.unfiltered[1] = glm::vec3(2.0f);
+    client->send(result, 4, 0);
+    client->sendEncoded(proto::encodeMessage(proto::Heartbeat{}, 5, 0));
+
+    auto rawFuture = raw.get_future();
+    auto decodedFuture = decoded.get_future();
+    ASSERT_TRUE(ready(rawFuture));
+    ASSERT_TRUE(ready(decodedFuture));
+    EXPECT_EQ(decodedFuture.get(), proto::MessageType::Heartbeat);
+    auto [header, payload] = rawFuture.get();
+    EXPECT_EQ(header.frame, 4u);
+    const auto back = std::get<proto::TileResult>(proto::decodeMessage(header, payload));
+    EXPECT_EQ(back.tileId, 17u);
+    EXPECT_FLOAT_EQ(back.channels.unfiltered[1].y, 2.0f);
 }
 
 }  // namespace

@@ -340,4 +340,19 @@ Message decodeMessage(const Header& header, std::span<const std::uint8_t> payloa
     return m;
 }
 
+void setHeaderFrameAndEpoch(std::vector<std::uint8_t>& message, std::uint32_t frame,
+                            std::uint32_t epoch) {
+    if (message.size() < kHeaderSize)
+        throw ProtocolError("not an encoded message: shorter than a header");
+    for (int i = 0; i < 4; ++i) {
+        message[8 + i] = std::uint8_t(frame >> (8 * i));
+        message[12 + i] = std::uint8_t(epoch >> (8 * i));
+    }
+}
+
+std::uint32_t peekTileId(std::span<const std::uint8_t> payload) {
+    ByteReader in(payload, "TileResult");
+    return in.u32();
+}
+
 }  // namespace igi::proto

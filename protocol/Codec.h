@@ -36,6 +36,14 @@ std::vector<std::uint8_t> encodePayload(const Message& message);
 /// Header and payload, ready for the socket.
 std::vector<std::uint8_t> encodeMessage(const Message& message, std::uint32_t frame,
                                         std::uint32_t epoch);
+/// Rewrites the frame and epoch of an encoded message in place (a recorded result sent again).
+void setHeaderFrameAndEpoch(std::vector<std::uint8_t>& message, std::uint32_t frame,
+                            std::uint32_t epoch);
+
+/// The tile a TileResult payload is for (its first field), without decoding the rest: lets the
+/// master drop a duplicate before spending time on it. Throws ProtocolError if too short.
+std::uint32_t peekTileId(std::span<const std::uint8_t> payload);
+
 /// Decodes and validates the payload of a (decoded) header. Throws ProtocolError when the
 /// payload is truncated, has trailing bytes, or holds an invalid enum, count, index or range.
 Message decodeMessage(const Header& header, std::span<const std::uint8_t> payload);

@@ -558,3 +558,25 @@ TEST(Codec, FuzzedTileChannelsThrowOrDecode) {
 
 }  // namespace
 }  // namespace igi::proto
+
+namespace igi::proto {
+namespace {
+
+TEST(Codec, RewritingFrameAndEpochOfAnEncodedMessage) {
+    TileResult r;
+    r.tileId = 5;
+    r.channels.resize(2, kIrradiance);
+    auto bytes = encodeMessage(r, 3, 4);
+    setHeaderFrameAndEpoch(bytes, 70000, 9);
+    const Header h =
+        decodeHeader(std::span<const std::uint8_t, kHeaderSize>(bytes.data(), kHeaderSize));
+    EXPECT_EQ(h.frame, 70000u);
+    EXPECT_EQ(h.epoch, 9u);
+    EXPECT_EQ(peekTileId(std::span(bytes).subspan(kHeaderSize)), 5u);
+    EXPECT_EQ(std::get<TileResult>(decodeMessage(h, std::span(bytes).subspan(kHeaderSize))).tileId,
+              5u);
+    EXPECT_THROW(peekTileId(std::span<const std::uint8_t>(bytes.data(), 3)), ProtocolError);
+}
+
+}  // namespace
+}  // namespace igi::proto

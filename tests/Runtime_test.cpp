@@ -1,0 +1,144 @@
+// The distributed runtime under change: clients killed mid-frame, clients joining mid-session,
+// different numbers of clients. Real processes on loopback; images compared bit for bit.
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "Process.h"
+#include "image/ImageIO.h"
+
+namespace igi {
+namespace {
+
+using namespace igi::testing;
+namespace fs = std::filesystem;
+
+std::vector<std::string> masterCommand(const std::vector<std::string>& args) {
+    std::vector<std::string> command = {(binDir() / "igi-master").string()};
+    command.insert(command.end(), args.begin(), args.end());
+    return command;
+}
+
+std::vector<std::string> sceneArgs(int frames) {
+    return {"--scene",     (sourceDir() / "scenes/cornell/cornell.json").string(),
+            "--width",     "160",
+            "--height",    "120",
+            "--frames",    std::to_string(frames),
+            "--listen",    "127.0.0.1:0",
+            "--log-level", "info"};
+}
+
+/// Waits until `log` contains a match of `pattern` (or the process ended); returns the match.
+std::smatch waitForLine(const fs::path& log, const std::regex& pattern, pid_t pid,
+                        double seconds = 60) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    static std::string text;  // the match refers into it
+    while (std::chrono::steady_clock::now() < deadline) {
+        text = readFile(log);
+        std::smatch m;
+        if (std::regex_search(text, m, pattern)) return m;
+        if (kill(pid, 0) != 0) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return {};
+}
+
+void expectSameImage(const fs::path& a, const fs::path& b) {
+    const Image x = readImage(a), y = readImage(b);
+    ASSERT_EQ(x.pixels.size(), y.pixels.size());
+    for (std::size_t i = 0; i < x.pixels.size(); ++i)
+        ASSERT_EQ(x.pixels[i], y.pixels[i]) << a << " and " << b << " differ at pixel " << i;
+}
+
+TEST(Runtime, OneTwoAndFourClientsGiveTheSamePixels) {
+    const fs::path dir = scratchDir("clients");
+    for (int clients : {1, 2, 4}) {
+        auto args = sceneArgs(3);
+        const std::string name = "c" + std::to_string(clients);
+        args.insert(args.end(), {"--local-clients", std::to_string(clients), "--output",
+                                 (dir / (name + ".exr")).string()});
+        const ProcessResult r = runProcess(masterCommand(args), dir / (name + ".log"));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    expectSameImage(dir / "c1.exr", dir / "c2.exr");
+    expectSameImage(dir / "c1.exr", dir / "c4.exr");
+    fs::remove_all(dir);
+}
+
+TEST(Runtime, AClientKilledMidFrameLosesNothing) {
+    const fs::path dir = scratchDir("kill");
+    const int frames = 24;
+    auto reference = sceneArgs(frames);
+    reference.insert(reference.end(),
+                     {"--local-clients", "1", "--output", (dir / "reference.exr").string()});
+    ASSERT_EQ(runProcess(masterCommand(reference), dir / "reference.log").exitCode, 0);
+
+    auto args = sceneArgs(frames);
+    args.insert(args.end(), {"--local-clients", "2", "--output", (dir / "killed.exr").string()});
+    const fs::path log = dir / "killed.log";
+    const pid_t master = spawnProcess(masterCommand(args), log);
+    ASSERT_GT(master, 0);
+    const auto started =
+        waitForLine(log, std::regex(R"(started local client 2 \(pid (\d+)\))"), master);
+    ASSERT_FALSE(started.empty()) << readFile(log);
+    const pid_t victim = std::stoi(started[1].str());
+    // Once frames flow, kill the second client without warning, in the middle of its tiles.
+    ASSERT_FALSE(waitForLine(log, std::regex(R"(frame +2:)"), master).empty()) << readFile(log);
+    ASSERT_EQ(kill(victim, SIGKILL), 0);
+    ASSERT_EQ(waitProcess(master, 300), 0) << readFile(log);
+    const std::string text = readFile(log);
+    EXPECT_NE(text.find("of its tiles go to others"), std::string::npos)
+        << "the kill came too late:\n"
+        << text;
+    expectSameImage(dir / "killed.exr", dir / "reference.exr");
+    fs::remove_all(dir);
+}
+
+TEST(Runtime, AClientJoiningMidSessionGetsWorkInTheNextFrames) {
+    const fs::path dir = scratchDir("join");
+    auto args = sceneArgs(40);
+    args.insert(args.end(), {"--local-clients", "1", "--output", (dir / "joined.exr").string(),
+                             "--stats-json", (dir / "stats.json").string()});
+    const fs::path log = dir / "master.log";
+    const pid_t master = spawnProcess(masterCommand(args), log);
+    ASSERT_GT(master, 0);
+    const auto listening =
+        waitForLine(log, std::regex(R"(listening on 127\.0\.0\.1:(\d+))"), master);
+    ASSERT_FALSE(listening.empty()) << readFile(log);
+    const std::string port = listening[1].str();
+    ASSERT_FALSE(waitForLine(log, std::regex(R"(frame +3:)"), master).empty()) << readFile(log);
+    const pid_t joiner = spawnProcess(
+        {(binDir() / "igi-client").string(), "--connect", "127.0.0.1:" + port, "--threads", "1"},
+        dir / "joiner.log");
+    ASSERT_GT(joiner, 0);
+    const auto ready = waitForLine(log, std::regex(R"(client 2 \(.*\) is ready)"), master);
+    ASSERT_FALSE(ready.empty()) << "the joiner was never ready:\n"
+                                << readFile(log) << readFile(dir / "joiner.log");
+    // The last frame finished before the joiner was ready.
+    const std::string text = readFile(log);
+    const std::size_t readyAt = text.find("client 2 (");
+    std::uint32_t lastFrame = 0;
+    const std::string before = text.substr(0, readyAt);
+    const std::regex frameLine(R"(frame +(\d+):)");
+    for (std::sregex_iterator it(before.begin(), before.end(), frameLine), end; it != end; ++it)
+        lastFrame = std::uint32_t(std::stoul((*it)[1].str()));
+    ASSERT_EQ(waitProcess(master, 300), 0) << readFile(log);
+    EXPECT_EQ(waitProcess(joiner, 30), 0) << readFile(dir / "joiner.log");
+
+    std::ifstream statsFile(dir / "stats.json");
+    const auto stats = nlohmann::json::parse(statsFile);
+    ASSERT_EQ(stats["clients"].size(), 2u);
+    const auto& joined = stats["clients"][1];
+    ASSERT_GT(joined["tiles"].get<int>(), 0) << "the joiner never got a tile";
+    // Frames in flight when it joined: the last finished one + 1 and + 2 (two are pipelined).
+    EXPECT_LE(joined["first_frame"].get<std::int64_t>(), std::int64_t(lastFrame) + 3)
+        << "joined after frame " << lastFrame;
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace igi
