@@ -174,6 +174,7 @@ void Master::maybeStart() {
         return;
     started_ = true;
     renderStart_ = Clock::now();
+    lastClientSeen_ = renderStart_;
     spdlog::info("{} clients ready after {:.2f} s: rendering {} frames", readyClients(),
                  secondsSince(created_), options_.frames);
 }
@@ -361,6 +362,16 @@ void Master::scheduleTick() {
                           std::max(1, options_.localClients + options_.remoteClients),
                           options_.waitSeconds);
             endSession(3);
+            return;
+        }
+        // With every client gone, wait for new ones (they may be restarting) for as long as
+        // for the first ones, then give up rather than hang.
+        if (started_ && readyClients() > 0) lastClientSeen_ = Clock::now();
+        if (started_ && secondsSince(lastClientSeen_) > options_.waitSeconds) {
+            spdlog::error(
+                "every client left and none came back within {:.0f} s; {} of {} frames done",
+                options_.waitSeconds, nextFrameToFinish_, options_.frames);
+            endSession(4);
             return;
         }
         // Heartbeats keep idle clients' read timeouts from firing; the tick also lets idle

@@ -103,6 +103,7 @@ class Master {
     int exitCode_ = 0;
     std::chrono::steady_clock::time_point created_;
     std::chrono::steady_clock::time_point renderStart_;
+    std::chrono::steady_clock::time_point lastClientSeen_;  ///< last tick with a ready client
     std::chrono::steady_clock::time_point renderEnd_;
 };
 

@@ -4,7 +4,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
-#include <functional>
+#include <span>
 #include <string>
 
 #include "Compression.h"
@@ -22,40 +22,98 @@ std::string hex(std::uint32_t v) {
     return buf;
 }
 
-/// Writes `count` words of `bytes` bytes each, byte 0 of every pixel first, then byte 1, ...
-void putShuffled(std::vector<std::uint8_t>& raw, const std::vector<std::uint32_t>& words,
-                 std::uint32_t bytes) {
-    for (std::uint32_t b = 0; b < bytes; ++b)
-        for (std::uint32_t w : words) raw.push_back(static_cast<std::uint8_t>(w >> (8 * b)));
-}
+/// Per-thread buffers of the codec, reused from tile to tile (a tile's allocations cost about
+/// as much as its pixels). Whatever grew past `kKeepBytes` (a huge tile) is given back.
+struct Scratch {
+    static constexpr std::size_t kKeepBytes = std::size_t{1} << 20;
+    std::vector<std::uint8_t> raw;     // the planes, byte-shuffled, as zstd sees them
+    std::vector<std::uint32_t> words;  // one plane's codes
 
-std::vector<std::uint32_t> getShuffled(std::span<const std::uint8_t> raw, std::size_t& offset,
-                                       std::size_t count, std::uint32_t bytes) {
-    std::vector<std::uint32_t> words(count, 0);
-    for (std::uint32_t b = 0; b < bytes; ++b) {
-        for (std::size_t i = 0; i < count; ++i)
-            words[i] |= std::uint32_t{raw[offset + i]} << (8 * b);
-        offset += count;
+    std::span<std::uint32_t> wordsFor(std::size_t count) {
+        if (words.size() < count) words.resize(count);
+        return {words.data(), count};
     }
-    return words;
+    void trim() {
+        if (raw.capacity() > kKeepBytes) std::vector<std::uint8_t>().swap(raw);
+        if (words.capacity() * sizeof(std::uint32_t) > kKeepBytes)
+            std::vector<std::uint32_t>().swap(words);
+    }
+};
+
+/// The calling thread's scratch, trimmed when the codec returns or throws (a hostile huge tile
+/// that fails half-way must not leave its buffers behind either).
+class ThreadScratch {
+  public:
+    ThreadScratch() : scratch_(instance()) {}
+    ~ThreadScratch() { scratch_.trim(); }
+    ThreadScratch(const ThreadScratch&) = delete;
+    ThreadScratch& operator=(const ThreadScratch&) = delete;
+    Scratch& operator*() { return scratch_; }
+
+  private:
+    static Scratch& instance() {
+        thread_local Scratch scratch;
+        return scratch;
+    }
+    Scratch& scratch_;
+};
+
+/// Writes the low `Bytes` bytes of every word to `raw`: byte 0 of every pixel first, then
+/// byte 1, ...
+template <std::uint32_t Bytes>
+void putShuffled(std::span<const std::uint32_t> words, std::uint8_t* raw) {
+    const std::size_t n = words.size();
+    for (std::uint32_t b = 0; b < Bytes; ++b) {
+        std::uint8_t* plane = raw + b * n;
+        for (std::size_t i = 0; i < n; ++i)
+            plane[i] = static_cast<std::uint8_t>(words[i] >> (8 * b));
+    }
 }
 
-bool allZero(const std::vector<std::uint32_t>& words) {
-    return std::all_of(words.begin(), words.end(), [](std::uint32_t w) { return w == 0; });
+/// The inverse of putShuffled.
+template <std::uint32_t Bytes>
+void getShuffled(const std::uint8_t* raw, std::span<std::uint32_t> words) {
+    const std::size_t n = words.size();
+    const std::uint8_t* b0 = raw;
+    const std::uint8_t* b1 = raw + n;
+    const std::uint8_t* b2 = raw + 2 * n;
+    const std::uint8_t* b3 = raw + 3 * n;
+    for (std::size_t i = 0; i < n; ++i) {
+        std::uint32_t w = b0[i] | std::uint32_t{b1[i]} << 8;
+        if constexpr (Bytes >= 3) w |= std::uint32_t{b2[i]} << 16;
+        if constexpr (Bytes >= 4) w |= std::uint32_t{b3[i]} << 24;
+        words[i] = w;
+    }
 }
+
+bool allEqual(std::span<const std::uint32_t> words, std::uint32_t value) {
+    std::uint32_t differ = 0;  // no early exit: a branch-free loop the compiler vectorizes
+    for (std::uint32_t w : words) differ |= w ^ value;
+    return differ == 0;
+}
+
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "planes are read as arrays of floats");
 
 float largestComponent(const std::vector<glm::vec3>& plane) {
-    float m = 0.0f;
-    for (const glm::vec3& v : plane)
-        for (int i = 0; i < 3; ++i)
-            if (v[i] > m) m = std::min(v[i], FLT_MAX);  // NaN compares false; +inf is clamped
-    return m;
+    // Running maxima over the plane as a flat array of floats, without branches (NaN compares
+    // false and is skipped), in lanes the compiler can vectorize; +inf is clamped at the end.
+    constexpr std::size_t kLanes = 12;  // four pixels
+    const float* f = &plane.data()->x;
+    const std::size_t n = plane.size() * 3;
+    float m[kLanes] = {};
+    std::size_t i = 0;
+    for (; i + kLanes <= n; i += kLanes)
+        for (std::size_t k = 0; k < kLanes; ++k) m[k] = f[i + k] > m[k] ? f[i + k] : m[k];
+    for (; i < n; ++i) m[0] = f[i] > m[0] ? f[i] : m[0];
+    return std::min(*std::max_element(m, m + kLanes), FLT_MAX);
 }
 
 float smallestFiniteDepth(const std::vector<float>& depth) {
     float m = INFINITY;
-    for (float d : depth)
-        if (d > 0.0f && d < m) m = d;
+    for (float d : depth) {
+        const float candidate = d > 0.0f ? d : INFINITY;  // NaN and <= 0 do not count
+        m = candidate < m ? candidate : m;                // without a branch: depth is noisy
+    }
     return std::isfinite(m) ? m : FLT_MIN;  // only invalid depths: any positive reference works
 }
 
@@ -65,54 +123,59 @@ void checkPlaneSize(std::size_t size, int count, const char* name) {
                             " entries, expected " + std::to_string(count));
 }
 
-/// One plane on the wire: its quantized words (none when the plane is left out because every
-/// pixel has the default value) and, for some, a float reference.
-struct EncodedPlane {
-    std::uint32_t bit = 0;
-    std::uint32_t bytes = 0;
-    std::vector<std::uint32_t> words;
-    bool hasReference = false;
-    float reference = 0.0f;
+/// Appends planes to the raw (shuffled) bytes in bit order, leaving out those whose every
+/// code is the default, and remembers which were sent and their references.
+class PlaneWriter {
+  public:
+    PlaneWriter(Scratch& scratch, std::size_t count, std::uint32_t planes)
+        : scratch_(scratch), count_(count) {
+        scratch_.raw.resize(std::size_t{bytesPerPixel(planes)} * count);
+    }
+
+    std::span<std::uint32_t> words() { return scratch_.wordsFor(count_); }
+
+    /// Adds the plane `bit` whose codes are in words(), unless they all equal `defaultCode`.
+    template <std::uint32_t Bytes>
+    void add(std::uint32_t bit, std::uint32_t defaultCode, bool hasReference, float reference) {
+        const auto w = words();
+        if (allEqual(w, defaultCode)) return;
+        putShuffled<Bytes>(w, scratch_.raw.data() + size_);
+        size_ += Bytes * count_;
+        sent_ |= bit;
+        if (hasReference) references_[referenceCount_++] = reference;
+    }
+
+    std::uint32_t sent() const { return sent_; }
+    std::span<const float> references() const { return {references_, referenceCount_}; }
+    std::span<const std::uint8_t> raw() const { return {scratch_.raw.data(), size_}; }
+
+  private:
+    Scratch& scratch_;
+    std::size_t count_;
+    std::size_t size_ = 0;
+    std::uint32_t sent_ = 0;
+    float references_[3] = {};
+    std::size_t referenceCount_ = 0;
 };
 
-EncodedPlane encodeRgbPlane(std::uint32_t bit, const std::vector<glm::vec3>& plane) {
-    EncodedPlane p{bit, 4, {}, true, largestComponent(plane)};
-    if (p.reference == 0.0f) return p;  // all zero: no words, left out
-    p.words.reserve(plane.size());
-    for (const glm::vec3& v : plane) p.words.push_back(encodeSharedExponent(v, p.reference));
-    if (allZero(p.words)) p.words.clear();
-    return p;
-}
+/// Reads the sent planes' codes off the raw bytes in bit order.
+class PlaneReader {
+  public:
+    PlaneReader(Scratch& scratch, std::size_t count) : scratch_(scratch), count_(count) {}
 
-EncodedPlane encodeReflectance(const std::vector<glm::vec3>& plane) {
-    EncodedPlane p{kReflectance, kReflectanceBytes, {}, false, 0.0f};
-    for (const glm::vec3& v : plane)
-        p.words.push_back(encodeSrgb8(v.x) | encodeSrgb8(v.y) << 8 | encodeSrgb8(v.z) << 16);
-    if (allZero(p.words)) p.words.clear();  // all black: left out
-    return p;
-}
-
-EncodedPlane encodeNormals(const std::vector<glm::vec3>& plane) {
-    EncodedPlane p{kNormal, kNormalBytes, {}, false, 0.0f};
-    for (const glm::vec3& n : plane) {
-        const OctCode c = encodeOctNormal(n);
-        p.words.push_back(c.u | std::uint32_t{c.v} << 8);
+    template <std::uint32_t Bytes>
+    std::span<const std::uint32_t> next() {
+        const auto w = scratch_.wordsFor(count_);
+        getShuffled<Bytes>(scratch_.raw.data() + offset_, w);
+        offset_ += Bytes * count_;
+        return w;
     }
-    if (allZero(p.words)) p.words.clear();  // no normals at all: left out
-    return p;
-}
 
-EncodedPlane encodeDepth(const std::vector<float>& plane) {
-    EncodedPlane p{kDepth, kDepthBytes, {}, true, smallestFiniteDepth(plane)};
-    bool anyHit = false;
-    for (float d : plane) {
-        const std::uint16_t c = encodeLogDepth(d, p.reference);
-        anyHit |= c != kDepthInfinite;
-        p.words.push_back(c);
-    }
-    if (!anyHit) p.words.clear();  // all +inf: left out
-    return p;
-}
+  private:
+    Scratch& scratch_;
+    std::size_t count_;
+    std::size_t offset_ = 0;
+};
 
 float readReference(ByteReader& in, const char* name) {
     const float r = in.f32();
@@ -146,31 +209,46 @@ void writeTileChannels(ByteWriter& out, const TileChannels& channels) {
     checkPlaneSize(channels.unfiltered.size(), count, "unfiltered");
     const std::uint32_t planes = count == 0 ? 0 : channels.mask();
 
+    ThreadScratch scratch;
+    PlaneWriter w(*scratch, static_cast<std::size_t>(count), planes);
     // In bit order, which is also the order on the wire.
-    std::vector<EncodedPlane> encoded;
-    if (planes & kIrradiance) encoded.push_back(encodeRgbPlane(kIrradiance, channels.irradiance));
-    if (planes & kReflectance) encoded.push_back(encodeReflectance(channels.reflectance));
-    if (planes & kNormal) encoded.push_back(encodeNormals(channels.normal));
-    if (planes & kDepth) encoded.push_back(encodeDepth(channels.depth));
-    if (planes & kUnfiltered) encoded.push_back(encodeRgbPlane(kUnfiltered, channels.unfiltered));
-
-    std::uint32_t sent = 0;
-    for (const EncodedPlane& p : encoded)
-        if (!p.words.empty()) sent |= p.bit;
+    if (planes & kIrradiance) {
+        const float scale = largestComponent(channels.irradiance);
+        encodeSharedExponents(channels.irradiance, scale, w.words());
+        w.add<kIrradianceBytes>(kIrradiance, 0, true, scale);
+    }
+    if (planes & kReflectance) {
+        encodeSrgb8Triples(channels.reflectance, w.words());
+        w.add<kReflectanceBytes>(kReflectance, 0, false, 0.0f);  // all black: left out
+    }
+    if (planes & kNormal) {
+        encodeOctNormals(channels.normal, w.words());
+        w.add<kNormalBytes>(kNormal, 0, false, 0.0f);  // no normals at all: left out
+    }
+    if (planes & kDepth) {
+        const float d0 = smallestFiniteDepth(channels.depth);
+        encodeLogDepths(channels.depth, d0, w.words());
+        w.add<kDepthBytes>(kDepth, kDepthInfinite, true, d0);  // all +inf: left out
+    }
+    if (planes & kUnfiltered) {
+        const float scale = largestComponent(channels.unfiltered);
+        encodeSharedExponents(channels.unfiltered, scale, w.words());
+        w.add<kUnfilteredBytes>(kUnfiltered, 0, true, scale);
+    }
 
     out.u32(static_cast<std::uint32_t>(count));
     out.u32(planes);
-    out.u32(sent);
-    for (const EncodedPlane& p : encoded)
-        if ((sent & p.bit) && p.hasReference) out.f32(p.reference);
-    if (sent == 0) return;
-
-    std::vector<std::uint8_t> raw;
-    raw.reserve(std::size_t{bytesPerPixel(sent)} * count);
-    for (const EncodedPlane& p : encoded)
-        if (sent & p.bit) putShuffled(raw, p.words, p.bytes);
-    const std::vector<std::uint8_t> frame = zstdCompress(raw, kZstdLevel);
-    out.blob(frame);
+    out.u32(w.sent());
+    for (float r : w.references()) out.f32(r);
+    if (w.sent() != 0) {
+        // A blob, compressed straight into the output behind its length.
+        const std::size_t at = out.size();
+        out.u32(0);
+        std::vector<std::uint8_t>& buffer = out.buffer();
+        zstdCompressAppend(w.raw(), kZstdLevel, buffer);
+        const std::size_t length = buffer.size() - at - 4;
+        for (int i = 0; i < 4; ++i) buffer[at + i] = static_cast<std::uint8_t>(length >> (8 * i));
+    }
 }
 
 TileChannels readTileChannels(ByteReader& in) {
@@ -191,43 +269,23 @@ TileChannels readTileChannels(ByteReader& in) {
     if (sent & kDepth) depthMin = readReference(in, "depth");
     if (sent & kUnfiltered) unfilteredScale = readReference(in, "unfiltered");
 
-    std::vector<std::uint8_t> raw;
+    ThreadScratch scratch;
     if (sent != 0) {
         // The frame must declare exactly this size, which the count bounds: checked before the
         // planes are allocated.
         const std::size_t rawSize = std::size_t{bytesPerPixel(sent)} * count;
-        raw = zstdDecompressExact(in.blob(), rawSize, in.what());
+        zstdDecompressExactInto(in.blob(), rawSize, in.what(), (*scratch).raw);
     }
     TileChannels channels;
     channels.resize(static_cast<int>(count), planes);
-    std::size_t offset = 0;
-    if (sent & kIrradiance) {
-        const auto w = getShuffled(raw, offset, count, kIrradianceBytes);
-        for (std::uint32_t i = 0; i < count; ++i)
-            channels.irradiance[i] = decodeSharedExponent(w[i], irradianceScale);
-    }
-    if (sent & kReflectance) {
-        const auto w = getShuffled(raw, offset, count, kReflectanceBytes);
-        for (std::uint32_t i = 0; i < count; ++i)
-            channels.reflectance[i] = {decodeSrgb8(w[i] & 0xFF), decodeSrgb8((w[i] >> 8) & 0xFF),
-                                       decodeSrgb8((w[i] >> 16) & 0xFF)};
-    }
-    if (sent & kNormal) {
-        const auto w = getShuffled(raw, offset, count, kNormalBytes);
-        for (std::uint32_t i = 0; i < count; ++i)
-            channels.normal[i] = decodeOctNormal(
-                {static_cast<std::uint8_t>(w[i] & 0xFF), static_cast<std::uint8_t>(w[i] >> 8)});
-    }
-    if (sent & kDepth) {
-        const auto w = getShuffled(raw, offset, count, kDepthBytes);
-        for (std::uint32_t i = 0; i < count; ++i)
-            channels.depth[i] = decodeLogDepth(static_cast<std::uint16_t>(w[i]), depthMin);
-    }
-    if (sent & kUnfiltered) {
-        const auto w = getShuffled(raw, offset, count, kUnfilteredBytes);
-        for (std::uint32_t i = 0; i < count; ++i)
-            channels.unfiltered[i] = decodeSharedExponent(w[i], unfilteredScale);
-    }
+    PlaneReader r(*scratch, count);
+    if (sent & kIrradiance)
+        decodeSharedExponents(r.next<kIrradianceBytes>(), irradianceScale, channels.irradiance);
+    if (sent & kReflectance) decodeSrgb8Triples(r.next<kReflectanceBytes>(), channels.reflectance);
+    if (sent & kNormal) decodeOctNormals(r.next<kNormalBytes>(), channels.normal);
+    if (sent & kDepth) decodeLogDepths(r.next<kDepthBytes>(), depthMin, channels.depth);
+    if (sent & kUnfiltered)
+        decodeSharedExponents(r.next<kUnfilteredBytes>(), unfilteredScale, channels.unfiltered);
     return channels;
 }
 

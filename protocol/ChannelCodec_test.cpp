@@ -2,13 +2,21 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <bit>
+#include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <iostream>
 #include <random>
+#include <thread>
 
+#include <zstd.h>
 #include <glm/geometric.hpp>
 
 #include "Codec.h"
+#include "Compression.h"
+#include "QuantizeReference.h"
 #include "TestMessages.h"
 
 namespace igi::proto {
@@ -259,6 +267,245 @@ TEST(ChannelCodec, DecoderValidatesCountMasksReferencesAndSizes) {
     bad = good;
     bad.back() ^= 0xFF;  // corrupt the zstd frame's last byte
     EXPECT_NE(decodeError(bad), "(no error)");
+}
+
+// ---- The codec against a straightforward one built on the reference quantizers ----
+
+namespace plain {
+
+std::uint32_t planeCode(std::uint32_t bit, const TileChannels& c, int i, float reference) {
+    switch (bit) {
+        case kIrradiance:
+            return reference::encodeSharedExponent(c.irradiance[i], reference);
+        case kReflectance:
+            return reference::encodeSrgb8(c.reflectance[i].x) |
+                   reference::encodeSrgb8(c.reflectance[i].y) << 8 |
+                   reference::encodeSrgb8(c.reflectance[i].z) << 16;
+        case kNormal: {
+            const OctCode o = reference::encodeOctNormal(c.normal[i]);
+            return o.u | std::uint32_t{o.v} << 8;
+        }
+        case kDepth:
+            return reference::encodeLogDepth(c.depth[i], reference);
+        default:
+            return reference::encodeSharedExponent(c.unfiltered[i], reference);
+    }
+}
+
+float largest(const std::vector<glm::vec3>& plane) {
+    float m = 0.0f;
+    for (const glm::vec3& v : plane)
+        for (int i = 0; i < 3; ++i)
+            if (v[i] > m) m = std::min(v[i], FLT_MAX);
+    return m;
+}
+
+float smallestDepth(const std::vector<float>& depth) {
+    float m = INFINITY;
+    for (float d : depth)
+        if (d > 0.0f && d < m) m = d;
+    return std::isfinite(m) ? m : FLT_MIN;
+}
+
+/// writeTileChannels as the format describes it, one pixel and one byte at a time.
+std::vector<std::uint8_t> encode(const TileChannels& c) {
+    const std::uint32_t planes = c.count == 0 ? 0 : c.mask();
+    const std::uint32_t bits[] = {kIrradiance, kReflectance, kNormal, kDepth, kUnfiltered};
+    const std::uint32_t bytes[] = {4, 3, 2, 2, 4};
+    std::uint32_t sent = 0;
+    std::vector<float> references;
+    std::vector<std::uint8_t> raw;
+    for (int p = 0; p < 5; ++p) {
+        if (!(planes & bits[p])) continue;
+        const float ref = bits[p] == kIrradiance   ? largest(c.irradiance)
+                          : bits[p] == kUnfiltered ? largest(c.unfiltered)
+                          : bits[p] == kDepth      ? smallestDepth(c.depth)
+                                                   : 0.0f;
+        const std::uint32_t none = bits[p] == kDepth ? kDepthInfinite : 0u;
+        std::vector<std::uint32_t> words;
+        for (int i = 0; i < c.count; ++i) words.push_back(planeCode(bits[p], c, i, ref));
+        if (std::all_of(words.begin(), words.end(), [&](std::uint32_t w) { return w == none; }))
+            continue;
+        sent |= bits[p];
+        if (ref != 0.0f) references.push_back(ref);
+        for (std::uint32_t b = 0; b < bytes[p]; ++b)
+            for (std::uint32_t w : words) raw.push_back(static_cast<std::uint8_t>(w >> (8 * b)));
+    }
+    std::vector<std::uint8_t> out;
+    ByteWriter w(out);
+    w.u32(static_cast<std::uint32_t>(c.count));
+    w.u32(planes);
+    w.u32(sent);
+    for (float r : references) w.f32(r);
+    if (sent != 0) {
+        std::vector<std::uint8_t> frame(ZSTD_compressBound(raw.size()));
+        frame.resize(ZSTD_compress(frame.data(), frame.size(), raw.data(), raw.size(), 1));
+        w.blob(frame);
+    }
+    return out;
+}
+
+/// readTileChannels as the format describes it, for valid input.
+TileChannels decode(const std::vector<std::uint8_t>& bytes) {
+    ByteReader in(bytes, "plain");
+    const std::uint32_t count = in.u32(), planes = in.u32(), sent = in.u32();
+    const float scale = (sent & kIrradiance) ? in.f32() : 0.0f;
+    const float d0 = (sent & kDepth) ? in.f32() : 0.0f;
+    const float unfilteredScale = (sent & kUnfiltered) ? in.f32() : 0.0f;
+    std::vector<std::uint8_t> raw;
+    if (sent != 0) {
+        const auto frame = in.blob();
+        raw.resize(ZSTD_getFrameContentSize(frame.data(), frame.size()));
+        ZSTD_decompress(raw.data(), raw.size(), frame.data(), frame.size());
+    }
+    TileChannels c;
+    c.resize(static_cast<int>(count), planes);
+    std::size_t offset = 0;
+    auto word = [&](std::uint32_t i, std::uint32_t bytes) {
+        std::uint32_t w = 0;
+        for (std::uint32_t b = 0; b < bytes; ++b)
+            w |= std::uint32_t{raw[offset + b * count + i]} << (8 * b);
+        return w;
+    };
+    if (sent & kIrradiance) {
+        for (std::uint32_t i = 0; i < count; ++i)
+            c.irradiance[i] = reference::decodeSharedExponent(word(i, 4), scale);
+        offset += 4 * count;
+    }
+    if (sent & kReflectance) {
+        for (std::uint32_t i = 0; i < count; ++i) {
+            const std::uint32_t w = word(i, 3);
+            c.reflectance[i] = {reference::decodeSrgb8(w & 0xFF),
+                                reference::decodeSrgb8((w >> 8) & 0xFF),
+                                reference::decodeSrgb8(w >> 16)};
+        }
+        offset += 3 * count;
+    }
+    if (sent & kNormal) {
+        for (std::uint32_t i = 0; i < count; ++i) {
+            const std::uint32_t w = word(i, 2);
+            c.normal[i] = reference::decodeOctNormal(
+                {static_cast<std::uint8_t>(w & 0xFF), static_cast<std::uint8_t>(w >> 8)});
+        }
+        offset += 2 * count;
+    }
+    if (sent & kDepth) {
+        for (std::uint32_t i = 0; i < count; ++i)
+            c.depth[i] = reference::decodeLogDepth(static_cast<std::uint16_t>(word(i, 2)), d0);
+        offset += 2 * count;
+    }
+    if (sent & kUnfiltered)
+        for (std::uint32_t i = 0; i < count; ++i)
+            c.unfiltered[i] = reference::decodeSharedExponent(word(i, 4), unfilteredScale);
+    return c;
+}
+
+}  // namespace plain
+
+template <typename T>
+bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+void expectSameBits(const TileChannels& a, const TileChannels& b) {
+    EXPECT_EQ(a.count, b.count);
+    EXPECT_TRUE(sameBits(a.irradiance, b.irradiance));
+    EXPECT_TRUE(sameBits(a.reflectance, b.reflectance));
+    EXPECT_TRUE(sameBits(a.normal, b.normal));
+    EXPECT_TRUE(sameBits(a.depth, b.depth));
+    EXPECT_TRUE(sameBits(a.unfiltered, b.unfiltered));
+}
+
+/// Tiles of every kind: realistic ones at extreme magnitudes, odd sizes, a large one (beyond
+/// the codec's 1 MiB of reusable buffers), planes missing or all default, values that are not
+/// ordinary (NaN, infinite, negative, subnormal) and a scale small enough for the decoder's
+/// double path.
+std::vector<TileChannels> variedTiles() {
+    std::vector<TileChannels> tiles;
+    for (float magnitude : {1e-12f, 1.0f, 1e12f})
+        for (std::uint32_t seed : {1u, 2u})
+            tiles.push_back(realisticTile(magnitude, seed, nullptr));
+    for (int n : {1, 3, 64, 1023, 100000}) tiles.push_back(test::sampleChannels(n, 7));
+    TileChannels odd = test::sampleChannels(300, 9);
+    odd.irradiance[0] = glm::vec3(NAN, -1.0f, INFINITY);
+    odd.irradiance[1] = glm::vec3(1e-44f, 0.0f, -0.0f);
+    odd.reflectance[2] = glm::vec3(NAN, 2.0f, -3.0f);
+    odd.normal[3] = glm::vec3(NAN);
+    odd.normal[4] = glm::vec3(0.0f, 0.0f, -1.0f);
+    odd.depth[5] = NAN;
+    odd.depth[6] = -2.0f;
+    odd.depth[7] = 1e30f;
+    tiles.push_back(odd);
+    TileChannels tiny = test::sampleChannels(200, 10);
+    for (glm::vec3& v : tiny.irradiance) v *= 1e-30f;  // scale below 2^-87
+    for (float& d : tiny.depth) d *= 1e-40f;           // subnormal depths
+    tiles.push_back(tiny);
+    TileChannels defaults = test::sampleChannels(50, 11);
+    std::fill(defaults.unfiltered.begin(), defaults.unfiltered.end(), glm::vec3(0.0f));
+    std::fill(defaults.depth.begin(), defaults.depth.end(), INFINITY);
+    tiles.push_back(defaults);
+    TileChannels some;
+    some.resize(77, kReflectance | kDepth);
+    some.depth[3] = 2.0f;
+    tiles.push_back(some);
+    tiles.push_back(TileChannels{});
+    return tiles;
+}
+
+TEST(ChannelCodec, WritesTheBytesOfAPlainEncoderAndReadsTheSameFloats) {
+    for (const TileChannels& c : variedTiles()) {
+        SCOPED_TRACE("tile of " + std::to_string(c.count) + " pixels, planes " +
+                     std::to_string(c.mask()));
+        const std::vector<std::uint8_t> bytes = encoded(c);
+        ASSERT_EQ(bytes, plain::encode(c));
+        ByteReader in(bytes, "tile");
+        const TileChannels fast = readTileChannels(in);
+        expectSameBits(fast, plain::decode(bytes));
+    }
+}
+
+TEST(ChannelCodec, ReadsArbitraryCodesAsThePlainDecoderDoes) {
+    // Codes no encoder would write (every byte random, octahedral (0, v), ...), in all planes.
+    std::mt19937 rng(21);
+    for (std::uint32_t count : {1u, 1024u, 5000u}) {
+        std::vector<std::uint8_t> raw(count * bytesPerPixel(kAllChannels));
+        for (auto& b : raw) b = static_cast<std::uint8_t>(rng());
+        std::vector<std::uint8_t> bytes;
+        ByteWriter w(bytes);
+        w.u32(count);
+        w.u32(kAllChannels);
+        w.u32(kAllChannels);
+        for (float r : {3.5f, 0.25f, 1e-30f}) w.f32(r);
+        w.blob(zstdCompress(raw, 1));
+        ByteReader in(bytes, "tile");
+        expectSameBits(readTileChannels(in), plain::decode(bytes));
+    }
+}
+
+TEST(ChannelCodec, ThreadsDecodeAndEncodeIndependently) {
+    // Per-thread buffers and tables built on first use: several threads at once must each get
+    // their own tiles' results.
+    const auto tiles = variedTiles();
+    std::vector<std::vector<std::uint8_t>> wire;
+    for (const TileChannels& c : tiles) wire.push_back(plain::encode(c));
+    std::atomic<int> mismatches{0};
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back([&, t] {
+            for (int round = 0; round < 3; ++round)
+                for (std::size_t k = 0; k < tiles.size(); ++k) {
+                    const std::size_t i = (k + t) % tiles.size();
+                    if (encoded(tiles[i]) != wire[i]) ++mismatches;
+                    ByteReader in(wire[i], "tile");
+                    const TileChannels d = readTileChannels(in);
+                    const TileChannels e = plain::decode(wire[i]);
+                    if (!sameBits(d.irradiance, e.irradiance) || !sameBits(d.depth, e.depth) ||
+                        !sameBits(d.normal, e.normal))
+                        ++mismatches;
+                }
+        });
+    for (auto& t : threads) t.join();
+    EXPECT_EQ(mismatches, 0);
 }
 
 }  // namespace

@@ -7,7 +7,8 @@
 
 namespace igi::proto {
 
-/// One zstd frame of `data` at `level` (the frame header records the content size).
+/// One zstd frame of `data` at `level` (the frame header records the content size). Small inputs
+/// (tiles) reuse a compression context kept per thread; the bytes are those of ZSTD_compress.
 std::vector<std::uint8_t> zstdCompress(std::span<const std::uint8_t> data, int level);
 /// The same frame, appended to `out` (saves a copy of a large scene).
 void zstdCompressAppend(std::span<const std::uint8_t> data, int level,
@@ -20,5 +21,11 @@ void zstdCompressAppend(std::span<const std::uint8_t> data, int level,
 /// Throws ProtocolError naming `what` on any mismatch or corruption.
 std::vector<std::uint8_t> zstdDecompressExact(std::span<const std::uint8_t> frame,
                                               std::size_t expectedSize, std::string_view what);
+/// The same into `out`, whose storage is reused (a tile decoder's buffer): on success `out`
+/// holds exactly the `expectedSize` bytes of content. Content up to 1 MiB (a tile) is
+/// decompressed in one call with a context kept per thread into `out` sized up front, as the
+/// first 1 MiB step would be; larger content grows `out` step by step as above.
+void zstdDecompressExactInto(std::span<const std::uint8_t> frame, std::size_t expectedSize,
+                             std::string_view what, std::vector<std::uint8_t>& out);
 
 }  // namespace igi::proto

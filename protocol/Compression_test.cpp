@@ -98,5 +98,59 @@ TEST(Compression, FrameClaimingMoreThanItHoldsIsRefused) {
     EXPECT_NE(errorOf(frame, claim), "(no error)");
 }
 
+TEST(Compression, ReusedContextsGiveTheBytesOfFreshOnes) {
+    // The per-thread context must not carry anything from one frame to the next, whatever the
+    // level or size before: the bytes are those of ZSTD_compress.
+    for (int round = 0; round < 2; ++round)
+        for (int level : {1, 3, 1, 19, 1})
+            for (std::size_t n : {std::size_t{100}, std::size_t{15000}, std::size_t{3} << 20}) {
+                const auto data = text(n);
+                std::vector<std::uint8_t> fresh(ZSTD_compressBound(n));
+                fresh.resize(ZSTD_compress(fresh.data(), fresh.size(), data.data(), n, level));
+                EXPECT_EQ(zstdCompress(data, level), fresh) << "level " << level << ", " << n;
+            }
+}
+
+TEST(Compression, DecompressIntoReusesTheBufferAndRecoversFromBadFrames) {
+    std::vector<std::uint8_t> out(50000, 0xAB);  // longer than the content: must be cut
+    const auto small = text(1000);
+    zstdDecompressExactInto(zstdCompress(small, 1), small.size(), "test", out);
+    EXPECT_EQ(out, small);
+    // A frame that fails half-way leaves the per-thread context mid-frame; the next one must
+    // still decode.
+    std::vector<std::uint8_t> corrupt;
+    ByteWriter frame(corrupt);
+    frame.u32(0xFD2FB528);
+    frame.u8(0x60);  // single segment, 2-byte content size (+ 256)
+    frame.u16(20000 - 256);
+    frame.u8(0x25);  // last block, compressed, 4 bytes
+    frame.u8(0);
+    frame.u8(0);
+    frame.u32(0xFFFFFFFF);  // literals "repeating" a Huffman table there is none of
+    EXPECT_THROW(zstdDecompressExactInto(corrupt, 20000, "test", out), ProtocolError);
+    const auto big = text(3 << 20);  // beyond 1 MiB: the step-by-step path into the same vector
+    zstdDecompressExactInto(zstdCompress(big, 1), big.size(), "test", out);
+    EXPECT_EQ(out, big);
+    zstdDecompressExactInto(zstdCompress(small, 1), small.size(), "test", out);
+    EXPECT_EQ(out, small);
+}
+
+TEST(Compression, SmallFramesProducingMoreThanDeclaredAreRefused) {
+    // A raw block of 10 bytes in a frame whose header declares 5, within the one-call path.
+    std::vector<std::uint8_t> frame;
+    ByteWriter out(frame);
+    out.u32(0xFD2FB528);
+    out.u8(0x20);  // single segment, 1-byte content size
+    out.u8(5);
+    out.u8(0x51);  // last block, raw, 10 bytes
+    out.u8(0);
+    out.u8(0);
+    for (int i = 0; i < 10; ++i) out.u8('a');
+    EXPECT_NE(errorOf(frame, 5).find("more than the declared size"), std::string::npos)
+        << errorOf(frame, 5);
+    std::vector<std::uint8_t> into;
+    EXPECT_THROW(zstdDecompressExactInto(frame, 5, "test", into), ProtocolError);
+}
+
 }  // namespace
 }  // namespace igi::proto

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include <glm/vec3.hpp>
 
@@ -38,5 +39,21 @@ constexpr std::uint16_t kDepthInfinite = 0xFFFF;
 constexpr double kDepthStepsPerOctave = 2048.0;
 std::uint16_t encodeLogDepth(float d, float d0);
 float decodeLogDepth(std::uint16_t code, float d0);
+
+// Whole planes at once, for the tile codec: bit for bit the codes and values of the per-value
+// functions above, many times faster (tables built once per process, no libm calls and no
+// per-pixel set-up in the loops). Codes are held in u32 words packed as on the wire before the
+// byte shuffle: shared exponent as above; sRGB triples red | green << 8 | blue << 16; octahedral
+// normals u | v << 8; log depth the u16 code. `in` and `out` must have the same size.
+void encodeSharedExponents(std::span<const glm::vec3> in, float scale,
+                           std::span<std::uint32_t> out);
+void decodeSharedExponents(std::span<const std::uint32_t> in, float scale,
+                           std::span<glm::vec3> out);
+void encodeSrgb8Triples(std::span<const glm::vec3> in, std::span<std::uint32_t> out);
+void decodeSrgb8Triples(std::span<const std::uint32_t> in, std::span<glm::vec3> out);
+void encodeOctNormals(std::span<const glm::vec3> in, std::span<std::uint32_t> out);
+void decodeOctNormals(std::span<const std::uint32_t> in, std::span<glm::vec3> out);
+void encodeLogDepths(std::span<const float> in, float d0, std::span<std::uint32_t> out);
+void decodeLogDepths(std::span<const std::uint32_t> in, float d0, std::span<float> out);
 
 }  // namespace igi::proto

@@ -142,3 +142,25 @@ TEST(Runtime, AClientJoiningMidSessionGetsWorkInTheNextFrames) {
 
 }  // namespace
 }  // namespace igi
+
+namespace igi {
+namespace {
+
+TEST(Runtime, WhenEveryClientIsGoneTheMasterGivesUpClearlyInsteadOfHanging) {
+    const fs::path dir = scratchDir("allgone");
+    auto args = sceneArgs(100000);
+    args.insert(args.end(), {"--local-clients", "1", "--wait-seconds", "2"});
+    const fs::path log = dir / "master.log";
+    const pid_t master = spawnProcess(masterCommand(args), log);
+    const auto started =
+        waitForLine(log, std::regex(R"(started local client 1 \(pid (\d+)\))"), master);
+    ASSERT_FALSE(started.empty()) << readFile(log);
+    ASSERT_FALSE(waitForLine(log, std::regex(R"(frame +1:)"), master).empty()) << readFile(log);
+    kill(std::stoi(started[1].str()), SIGKILL);
+    EXPECT_EQ(waitProcess(master, 60), 4) << readFile(log);
+    EXPECT_NE(readFile(log).find("every client left"), std::string::npos) << readFile(log);
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace igi
