@@ -7,6 +7,7 @@
 #include <boost/asio/connect.hpp>
 #include <boost/asio/ip/host_name.hpp>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/post.hpp>
 
 #include "render/Tile.h"
 #include "scene/SceneError.h"
@@ -16,6 +17,8 @@ namespace igi {
 namespace {
 
 constexpr auto kHeartbeatPeriod = std::chrono::seconds(2);
+// Versions kept for tiles still to come; the master renders at most two frames at once.
+constexpr std::size_t kKeptVersions = 8;
 
 }  // namespace
 
@@ -84,7 +87,9 @@ void ClientSession::onMessage(const proto::Header& header, proto::Message messag
     if (auto* welcome = std::get_if<proto::Welcome>(&message)) {
         spdlog::info("the master calls this client {}", welcome->clientId);
     } else if (auto* data = std::get_if<proto::SceneData>(&message)) {
-        onSceneData(std::move(*data));
+        onSceneData(header, std::move(*data));
+    } else if (auto* update = std::get_if<proto::SceneUpdate>(&message)) {
+        onSceneUpdate(header.epoch, std::move(update->changes));
     } else if (auto* tile = std::get_if<proto::TileAssign>(&message)) {
         onTile(header, *tile);
     } else if (std::holds_alternative<proto::Shutdown>(message)) {
@@ -95,9 +100,14 @@ void ClientSession::onMessage(const proto::Header& header, proto::Message messag
         spdlog::error("the master refused this client: {}", error->reason);
         connection_->close("error from the master");
     } else if (!std::holds_alternative<proto::Heartbeat>(message)) {
-        connection_->close("unexpected " + proto::messageTypeName(proto::typeOf(message)) +
-                           " from the master");
+        refuse("unexpected " + proto::messageTypeName(proto::typeOf(message)) + " from the master");
     }
+}
+
+void ClientSession::refuse(const std::string& reason) {
+    spdlog::error("closing the connection: {}", reason);
+    connection_->send(proto::Error{reason}, 0, 0);
+    connection_->closeAfterSending(reason);
 }
 
 void ClientSession::onClose(const std::string& reason) {
@@ -107,32 +117,35 @@ void ClientSession::onClose(const std::string& reason) {
     io_.stop();
 }
 
-void ClientSession::onSceneData(proto::SceneData data) {
-    if (ready_) {
-        connection_->close("a second scene in one session");
-        return;
-    }
-    // Building can take a while for big scenes: do it off the io thread, so heartbeats go on.
-    pool_.submit([this, data = std::move(data)]() mutable {
+void ClientSession::onSceneData(const proto::Header& header, proto::SceneData data) {
+    if (sceneRequested_) return refuse("a second scene in one session");
+    sceneRequested_ = true;
+    latestEpoch_ = header.epoch;
+    // Loading can take a while for big scenes: do it off the io thread, so heartbeats go on.
+    pool_.submit([this, epoch = header.epoch, data = std::move(data)]() mutable {
         try {
             const auto start = std::chrono::steady_clock::now();
-            scene_ = std::make_unique<Scene>(loadSceneBundle(data.bundle));
-            scene_->render = data.settings;
-            scene_->image = data.image;
-            scene_->camera = data.camera;
-            traceable_ = std::make_unique<TraceableScene>(device_, *scene_);
-            renderer_ = std::make_unique<TileRenderer>(*traceable_, *scene_, scene_->render,
-                                                       scene_->camera, scene_->image);
+            auto scene = std::make_unique<Scene>(loadSceneBundle(data.bundle));
+            scene->render = data.settings;
+            scene->image = data.image;
+            scene->camera = data.camera;
+            auto geometry = std::make_unique<SceneGeometry>(device_, *scene);
+            SceneState state = SceneState::of(*scene);
+            applyChanges(state, data.changes);  // the master's state when this client joined
+            auto version = std::make_shared<SceneVersion>(epoch, *geometry, std::move(state),
+                                                          scene->render, scene->image);
             const float seconds =
                 std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
             spdlog::info(
                 "scene '{}' ready: {} triangles in {:.2f} s, {} light paths and {} direct samples "
                 "per set{}",
-                data.bundle.sceneName, traceable_->triangleCount(), seconds,
-                renderer_->builder().vplPaths(), scene_->render.directSamples,
-                renderer_->builder().causticsActive() ? ", caustics on" : "");
-            ready_ = true;
-            connection_->send(proto::SceneReady{traceable_->triangleCount(), seconds}, 0, 0);
+                data.bundle.sceneName, version->traceable.triangleCount(), seconds,
+                version->renderer.builder().vplPaths(), scene->render.directSamples,
+                version->renderer.builder().causticsActive() ? ", caustics on" : "");
+            boost::asio::post(io_, [this, scene = std::move(scene), geometry = std::move(geometry),
+                                    version, seconds]() mutable {
+                onSceneLoaded(std::move(scene), std::move(geometry), std::move(version), seconds);
+            });
         } catch (const std::exception& e) {
             spdlog::error("cannot build the scene: {}", e.what());
             connection_->send(proto::Error{std::string("cannot build the scene: ") + e.what()}, 0,
@@ -142,39 +155,71 @@ void ClientSession::onSceneData(proto::SceneData data) {
     });
 }
 
-void ClientSession::onTile(const proto::Header& header, const proto::TileAssign& a) {
-    if (!ready_) {
-        connection_->close("a tile before the scene was ready");
+void ClientSession::onSceneLoaded(std::unique_ptr<Scene> scene,
+                                  std::unique_ptr<SceneGeometry> geometry,
+                                  std::shared_ptr<SceneVersion> version, float seconds) {
+    scene_ = std::move(scene);
+    geometry_ = std::move(geometry);
+    versions_[version->epoch] = version;
+    const std::uint64_t triangles = version->traceable.triangleCount();
+    ready_ = true;
+    for (auto& [epoch, changes] : std::exchange(pendingUpdates_, {}))
+        onSceneUpdate(epoch, std::move(changes));
+    connection_->send(proto::SceneReady{triangles, seconds}, 0, 0);
+}
+
+void ClientSession::onSceneUpdate(std::uint32_t epoch, std::vector<SceneChange> changes) {
+    if (!sceneRequested_) return refuse("a scene update before the scene");
+    if (epoch != latestEpoch_ + 1 && ready_)
+        return refuse("scene update to epoch " + std::to_string(epoch) + " after epoch " +
+                      std::to_string(latestEpoch_));
+    if (!ready_) {  // still loading: apply in order once loaded
+        pendingUpdates_.emplace_back(epoch, std::move(changes));
         return;
     }
+    SceneState state = versions_.at(latestEpoch_)->state;
+    try {
+        applyChanges(state, changes);
+    } catch (const std::exception& e) {
+        return refuse(std::string("a bad scene update: ") + e.what());
+    }
+    // Cheap: a top-level commit and the lights; the meshes are shared.
+    versions_[epoch] = std::make_shared<SceneVersion>(epoch, *geometry_, std::move(state),
+                                                      scene_->render, scene_->image);
+    latestEpoch_ = epoch;
+    // Tiles of old epochs keep their version alive; the map keeps only recent ones.
+    while (versions_.size() > kKeptVersions) versions_.erase(versions_.begin());
+}
+
+void ClientSession::onTile(const proto::Header& header, const proto::TileAssign& a) {
+    if (!ready_) return refuse("a tile before the scene was ready");
+    const auto version = versions_.find(header.epoch);
+    if (version == versions_.end())
+        return refuse("a tile of epoch " + std::to_string(header.epoch) +
+                      ", which this client does not have");
     const RenderSettings& s = scene_->render;
     const Tile tile{a.x0, a.y0, a.width, a.height, a.kx, a.ky};
     if (a.kx >= s.interleaveX || a.ky >= s.interleaveY || a.x0 % s.interleaveX != 0 ||
         a.y0 % s.interleaveY != 0 || a.x0 + a.width > scene_->image.width ||
-        a.y0 + a.height > scene_->image.height) {
-        connection_->close("a tile outside the image or the interleaving pattern");
-        return;
-    }
+        a.y0 + a.height > scene_->image.height)
+        return refuse("a tile outside the image or the interleaving pattern");
     if (header.frame > newestFrame_) {
         newestFrame_ = header.frame;
         // Sets of frames two behind are no longer needed: frames are pipelined one deep.
-        if (newestFrame_ >= 2) renderer_->cache().evictBefore(newestFrame_ - 1);
+        if (newestFrame_ >= 2)
+            for (auto& [epoch, v] : versions_) v->renderer.cache().evictBefore(newestFrame_ - 1);
     }
     const std::uint32_t frame = header.frame, epoch = header.epoch;
-    if (options_.replay) return replayTile(frame, epoch, a.tileId, tile);
-
-    renderer_->render(pool_, frame, a.tileId, tile,
-                      [this, frame, epoch](proto::TileResult&& result) {
-                          connection_->send(result, frame, epoch);
-                      });
+    std::shared_ptr<SceneVersion> v = version->second;
+    if (options_.replay) return replayTile(v, frame, epoch, a.tileId, tile);
+    v->renderer.render(pool_, frame, a.tileId, tile,
+                       [this, v, frame, epoch](proto::TileResult&& result) {
+                           connection_->send(result, frame, epoch);
+                       });
 }
 
-}  // namespace igi
-
-namespace igi {
-
-void ClientSession::replayTile(std::uint32_t frame, std::uint32_t epoch, std::uint32_t tileId,
-                               const Tile& tile) {
+void ClientSession::replayTile(const std::shared_ptr<SceneVersion>& version, std::uint32_t frame,
+                               std::uint32_t epoch, std::uint32_t tileId, const Tile& tile) {
     {
         std::lock_guard lock(replayMutex_);
         auto it = recorded_.find(tileId);
@@ -185,15 +230,16 @@ void ClientSession::replayTile(std::uint32_t frame, std::uint32_t epoch, std::ui
             return;
         }
     }
-    renderer_->render(
-        pool_, frame, tileId, tile, [this, frame, epoch, tileId](proto::TileResult&& result) {
-            std::vector<std::uint8_t> bytes = proto::encodeMessage(result, frame, epoch);
-            {
-                std::lock_guard lock(replayMutex_);
-                recorded_[tileId] = bytes;
-            }
-            connection_->sendEncoded(std::move(bytes));
-        });
+    version->renderer.render(pool_, frame, tileId, tile,
+                             [this, version, frame, epoch, tileId](proto::TileResult&& result) {
+                                 std::vector<std::uint8_t> bytes =
+                                     proto::encodeMessage(result, frame, epoch);
+                                 {
+                                     std::lock_guard lock(replayMutex_);
+                                     recorded_[tileId] = bytes;
+                                 }
+                                 connection_->sendEncoded(std::move(bytes));
+                             });
 }
 
 }  // namespace igi

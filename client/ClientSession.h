@@ -13,8 +13,8 @@
 
 #include "EmbreeDevice.h"
 #include "Messages.h"
-#include "TileRenderer.h"
-#include "TraceableScene.h"
+#include "SceneGeometry.h"
+#include "SceneVersion.h"
 #include "net/Connection.h"
 #include "util/ThreadPool.h"
 
@@ -46,10 +46,15 @@ class ClientSession {
     bool connect();
     void onMessage(const proto::Header& header, proto::Message message);
     void onClose(const std::string& reason);
-    void onSceneData(proto::SceneData data);
+    /// The master broke the protocol: say why, then close.
+    void refuse(const std::string& reason);
+    void onSceneData(const proto::Header& header, proto::SceneData data);
+    void onSceneLoaded(std::unique_ptr<Scene> scene, std::unique_ptr<SceneGeometry> geometry,
+                       std::shared_ptr<SceneVersion> version, float seconds);
+    void onSceneUpdate(std::uint32_t epoch, std::vector<SceneChange> changes);
     void onTile(const proto::Header& header, const proto::TileAssign& assign);
-    void replayTile(std::uint32_t frame, std::uint32_t epoch, std::uint32_t tileId,
-                    const Tile& tile);
+    void replayTile(const std::shared_ptr<SceneVersion>& version, std::uint32_t frame,
+                    std::uint32_t epoch, std::uint32_t tileId, const Tile& tile);
 
     void scheduleHeartbeat();
 
@@ -58,10 +63,16 @@ class ClientSession {
     boost::asio::steady_timer heartbeat_;
     std::shared_ptr<net::Connection> connection_;
     EmbreeDevice device_;
-    std::unique_ptr<Scene> scene_;
-    std::unique_ptr<TraceableScene> traceable_;
-    std::unique_ptr<TileRenderer> renderer_;
-    std::atomic<bool> ready_{false};
+    // (the members below are used on the io thread only, but for the device and the pool)
+    std::unique_ptr<Scene> scene_;             ///< as loaded from the bundle
+    std::unique_ptr<SceneGeometry> geometry_;  ///< shared by every version
+    /// Versions by epoch (io thread only). Tiles keep the version they render with alive.
+    std::map<std::uint32_t, std::shared_ptr<SceneVersion>> versions_;
+    std::uint32_t latestEpoch_ = 0;
+    /// Updates that arrived while the scene was still loading, applied once it is.
+    std::vector<std::pair<std::uint32_t, std::vector<SceneChange>>> pendingUpdates_;
+    bool sceneRequested_ = false;  ///< SceneData arrived (io thread)
+    bool ready_ = false;           ///< the scene is loaded (io thread)
     std::uint32_t newestFrame_ = 0;
     int exitCode_ = 1;
     std::mutex replayMutex_;

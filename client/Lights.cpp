@@ -16,7 +16,7 @@ std::uint64_t triangleKey(std::uint32_t mesh, std::uint32_t triangle) {
 
 }  // namespace
 
-Lights::Lights(const TraceableScene& traceable, const Scene& scene) {
+Lights::Lights(const TraceableScene& traceable, const std::vector<PointLight>& pointLights) {
     std::vector<float> power;
     for (const auto& t : traceable.emissiveTriangles()) {
         Emitter e;
@@ -33,7 +33,8 @@ Lights::Lights(const TraceableScene& traceable, const Scene& scene) {
         emitters_.push_back(e);
         power.push_back(kPi * e.area * luminance(e.emitted));  // one-sided Lambertian emitter
     }
-    for (const PointLight& p : scene.pointLights) {
+    for (const PointLight& p : pointLights) {
+        if (!p.on) continue;
         Emitter e;
         e.p0 = p.position;
         e.emitted = p.intensity;

@@ -27,7 +27,9 @@ struct LightSample {
 /// samples on the lights that matter.
 class Lights {
   public:
-    Lights(const TraceableScene& traceable, const Scene& scene);
+    /// The emissive triangles of `traceable` (quad lights included) and the point lights that
+    /// are on.
+    Lights(const TraceableScene& traceable, const std::vector<PointLight>& pointLights);
 
     bool empty() const { return distribution_.empty(); }
     std::size_t count() const { return emitters_.size(); }

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "EmbreeDevice.h"
+#include "SceneGeometry.h"
 #include "TileRenderer.h"
 #include "TraceableScene.h"
 #include "image/Image.h"
@@ -17,6 +18,7 @@
 #include "render/FrameBuffer.h"
 #include "render/Tile.h"
 #include "scene/Scene.h"
+#include "scene/SceneState.h"
 #include "util/ThreadPool.h"
 
 namespace igi::testing {
@@ -82,8 +84,9 @@ class InProcessRenderer {
   public:
     explicit InProcessRenderer(const Scene& scene, unsigned threads = 2)
         : scene_(scene),
-          traceable_(device_, scene_),
-          renderer_(traceable_, scene_, scene_.render, scene_.camera, scene_.image),
+          geometry_(device_, scene_),
+          traceable_(geometry_),
+          renderer_(traceable_, SceneState::of(scene_), scene_.render, scene_.image),
           pool_(threads) {}
 
     Image render(int frames, std::uint32_t firstFrame = 0) {
@@ -121,6 +124,7 @@ class InProcessRenderer {
   private:
     Scene scene_;
     EmbreeDevice device_;
+    SceneGeometry geometry_;
     TraceableScene traceable_;
     TileRenderer renderer_;
     ThreadPool pool_;

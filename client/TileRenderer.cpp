@@ -23,14 +23,13 @@ struct TileRenderer::TileJob {
     Done done;
 };
 
-TileRenderer::TileRenderer(const TraceableScene& scene, const Scene& plain,
-                           const RenderSettings& settings, const Camera& camera,
-                           const ImageSettings& image)
+TileRenderer::TileRenderer(const TraceableScene& scene, const SceneState& state,
+                           const RenderSettings& settings, const ImageSettings& image)
     : scene_(scene),
       settings_(settings),
       image_(image),
-      camera_(camera, image.width, image.height),
-      lights_(scene, plain),
+      camera_(state.camera, image.width, image.height),
+      lights_(scene, state.pointLights),
       builder_(scene, lights_, settings),
       cache_(builder_),
       igi_(scene, settings, camera_),

@@ -22,8 +22,9 @@ namespace igi {
 /// P_k / C_k of a tile comes from the cache (built by the first chunk that needs it).
 class TileRenderer {
   public:
-    TileRenderer(const TraceableScene& scene, const Scene& plain, const RenderSettings& settings,
-                 const Camera& camera, const ImageSettings& image);
+    /// Renders `scene`, a version whose camera and point lights `state` gives.
+    TileRenderer(const TraceableScene& scene, const SceneState& state,
+                 const RenderSettings& settings, const ImageSettings& image);
 
     using Done = std::function<void(proto::TileResult&&)>;
 

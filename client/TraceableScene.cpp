@@ -17,46 +17,40 @@ glm::vec3 transformPoint(const glm::mat4& m, glm::vec3 p) {
     return glm::vec3(m * glm::vec4(p, 1.0f));
 }
 
-// Two triangles per quad light, wound so that their front faces the light's emitting side.
-Mesh makeQuadLightMesh(const std::vector<QuadLight>& lights, std::uint32_t materialBase) {
-    Mesh mesh;
-    mesh.name = "quad lights";
-    for (std::uint32_t i = 0; i < lights.size(); ++i) {
-        const QuadLight& q = lights[i];
-        const auto base = std::uint32_t(mesh.positions.size());
-        mesh.positions.push_back(q.corner);
-        mesh.positions.push_back(q.corner + q.edge1);
-        mesh.positions.push_back(q.corner + q.edge1 + q.edge2);
-        mesh.positions.push_back(q.corner + q.edge2);
-        mesh.triangles.push_back({base, base + 1, base + 2});
-        mesh.triangles.push_back({base, base + 2, base + 3});
-        mesh.materialIds.push_back(materialBase + i);
-        mesh.materialIds.push_back(materialBase + i);
-    }
-    return mesh;
+// The unit square onto the quad light: x along edge1, y along edge2, z along its normal.
+glm::mat4 quadLightMatrix(const QuadLight& q) {
+    const glm::vec3 n = glm::cross(q.edge1, q.edge2);
+    const float len = glm::length(n);
+    return glm::mat4(glm::vec4(q.edge1, 0), glm::vec4(q.edge2, 0),
+                     glm::vec4(len > 0 ? n / len : n, 0), glm::vec4(q.corner, 1));
 }
 
-Material makeQuadLightMaterial(const QuadLight& q) {
+Material quadLightMaterial(const QuadLight& q) {
     Material m;
     m.name = q.name.empty() ? "quad light" : q.name;
     m.diffuse = glm::vec3(0.0f);  // a pure emitter: it reflects nothing
-    m.emission = q.radiance;
+    m.emission = q.on ? q.radiance : glm::vec3(0.0f);
     return m;
 }
 
 }  // namespace
 
-TraceableScene::TraceableScene(const EmbreeDevice& device, const Scene& scene)
-    : materials_(scene.materials), textures_(&scene.textures) {
-    quadLightMaterialBase_ = std::uint32_t(materials_.size());
-    for (const QuadLight& q : scene.quadLights) materials_.push_back(makeQuadLightMaterial(q));
-    quadLightMesh_ = makeQuadLightMesh(scene.quadLights, quadLightMaterialBase_);
+TraceableScene::TraceableScene(const SceneGeometry& geometry)
+    : TraceableScene(geometry, SceneState::of(geometry.scene())) {}
 
-    top_ = rtcNewScene(device.get());
-    // Robust traversal: no hit is lost on shared edges, so closed meshes do not leak light.
+TraceableScene::TraceableScene(const SceneGeometry& geometry, const SceneState& state)
+    : geometry_(geometry), materials_(state.materials), textures_(&geometry.scene().textures) {
+    const Scene& scene = geometry.scene();
+    quadLightMaterialBase_ = std::uint32_t(materials_.size());
+    for (const QuadLight& q : state.quadLights) materials_.push_back(quadLightMaterial(q));
+
+    top_ = rtcNewScene(geometry.device().get());
     rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
-    for (const Mesh& mesh : scene.meshes) addMesh(mesh, device.get());
-    addMesh(quadLightMesh_, device.get());
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i)
+        addInstance(scene.meshes[i], geometry.mesh(i), state.transforms[i].matrix(), -1);
+    for (std::size_t i = 0; i < state.quadLights.size(); ++i)
+        addInstance(geometry.unitQuad(), geometry.unitQuadScene(),
+                    quadLightMatrix(state.quadLights[i]), int(quadLightMaterialBase_ + i));
     rtcCommitScene(top_);
 
     RTCBounds b;
@@ -68,41 +62,20 @@ TraceableScene::TraceableScene(const EmbreeDevice& device, const Scene& scene)
 }
 
 TraceableScene::~TraceableScene() {
-    for (MeshData& m : meshes_)
-        if (m.scene) rtcReleaseScene(m.scene);
     if (top_) rtcReleaseScene(top_);
 }
 
-void TraceableScene::addMesh(const Mesh& mesh, RTCDevice device) {
+void TraceableScene::addInstance(const Mesh& mesh, RTCScene scene, const glm::mat4& objectToWorld,
+                                 int material) {
     MeshData data;
     data.mesh = &mesh;
-    data.objectToWorld = mesh.transform.matrix();
-    data.normalToWorld = glm::transpose(glm::inverse(glm::mat3(data.objectToWorld)));
+    data.objectToWorld = objectToWorld;
+    data.normalToWorld = glm::transpose(glm::inverse(glm::mat3(objectToWorld)));
+    data.material = material;
     const auto id = std::uint32_t(meshes_.size());
-    if (!mesh.triangles.empty()) {
-        data.scene = rtcNewScene(device);
-        rtcSetSceneFlags(data.scene, RTC_SCENE_FLAG_ROBUST);
-        rtcSetSceneBuildQuality(data.scene, RTC_BUILD_QUALITY_HIGH);
-        RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* vertices = static_cast<float*>(
-            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                    3 * sizeof(float), mesh.positions.size()));
-        auto* indices = static_cast<unsigned*>(
-            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                    3 * sizeof(unsigned), mesh.triangles.size()));
-        if (!vertices || !indices)
-            throw std::runtime_error("Embree could not allocate mesh buffers");
-        for (std::size_t i = 0; i < mesh.positions.size(); ++i)
-            for (int c = 0; c < 3; ++c) vertices[3 * i + c] = mesh.positions[i][c];
-        for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-            for (int c = 0; c < 3; ++c) indices[3 * i + c] = mesh.triangles[i][c];
-        rtcCommitGeometry(geom);
-        rtcAttachGeometry(data.scene, geom);
-        rtcReleaseGeometry(geom);
-        rtcCommitScene(data.scene);
-
-        RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
-        rtcSetGeometryInstancedScene(instance, data.scene);
+    if (scene) {
+        RTCGeometry instance = rtcNewGeometry(geometry_.device().get(), RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(instance, scene);
         rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
                                 glm::value_ptr(data.objectToWorld));
         rtcCommitGeometry(instance);
@@ -167,7 +140,7 @@ TraceableScene::WorldTriangle TraceableScene::worldTriangle(std::uint32_t mesh,
     return {transformPoint(m.objectToWorld, m.mesh->positions[t.x]),
             transformPoint(m.objectToWorld, m.mesh->positions[t.y]),
             transformPoint(m.objectToWorld, m.mesh->positions[t.z]),
-            m.mesh->materialIds[triangle],
+            materialOf(m, triangle),
             mesh,
             triangle};
 }
@@ -203,7 +176,7 @@ void TraceableScene::fillSurfacePoint(const RTCRayHit& rh, SurfacePoint& hit) co
     hit.mesh = meshIndex;
     hit.triangle = rh.hit.primID;
     hit.distance = rh.ray.tfar;
-    hit.material = &materials_[mesh.materialIds[rh.hit.primID]];
+    hit.material = &materials_[materialOf(m, rh.hit.primID)];
     hit.albedo = hit.material->diffuse;
     if (hit.material->diffuseTexture >= 0)
         hit.albedo *= (*textures_)[hit.material->diffuseTexture].sample(hit.uv);
@@ -215,7 +188,8 @@ std::vector<TraceableScene::WorldTriangle> TraceableScene::trianglesWhere(
     for (std::uint32_t mi = 0; mi < meshes_.size(); ++mi) {
         const Mesh& mesh = *meshes_[mi].mesh;
         for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
-            if (predicate(materials_[mesh.materialIds[t]])) result.push_back(worldTriangle(mi, t));
+            if (predicate(materials_[materialOf(meshes_[mi], t)]))
+                result.push_back(worldTriangle(mi, t));
     }
     return result;
 }
@@ -237,7 +211,7 @@ void TraceableScene::computeMeanAlbedo(const std::vector<Texture>& textures) {
     for (std::uint32_t mi = 0; mi < meshes_.size(); ++mi) {
         const Mesh& mesh = *meshes_[mi].mesh;
         for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-            const Material& mat = materials_[mesh.materialIds[t]];
+            const Material& mat = materials_[materialOf(meshes_[mi], t)];
             if (mat.glass) continue;
             glm::vec3 albedo = mat.diffuse;
             if (mat.diffuseTexture >= 0) albedo *= textures[mat.diffuseTexture].average;

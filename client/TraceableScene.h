@@ -8,20 +8,23 @@
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 
-#include "EmbreeDevice.h"
+#include "SceneGeometry.h"
 #include "SurfacePoint.h"
 #include "math/RayOffset.h"
 #include "scene/Scene.h"
+#include "scene/SceneState.h"
 
 namespace igi {
 
-/// The Embree-backed, traceable form of a plain-data Scene: one Embree scene per mesh, placed by
-/// an instance in a top-level scene (so that moving an object is a transform update, not a
-/// rebuild), plus one mesh holding the quad lights' geometry. Built by one call, then read-only
-/// and safe to query from many threads.
+/// The traceable form of one version of a scene: the meshes of a SceneGeometry placed by
+/// instances (with the state's transforms) in a top-level Embree scene, the quad lights as
+/// instances of a unit square, and the state's materials. Building one costs a top-level
+/// commit, so each scene epoch gets its own. Read-only once built, safe from many threads.
 class TraceableScene {
   public:
-    TraceableScene(const EmbreeDevice& device, const Scene& scene);
+    TraceableScene(const SceneGeometry& geometry, const SceneState& state);
+    /// A version in the scene's own, as-loaded state.
+    explicit TraceableScene(const SceneGeometry& geometry);
     ~TraceableScene();
     TraceableScene(const TraceableScene&) = delete;
     TraceableScene& operator=(const TraceableScene&) = delete;
@@ -52,7 +55,6 @@ class TraceableScene {
     RTCScene embreeScene() const { return top_; }
     /// Index of the first material made for the quad lights; quad light i uses this + i.
     std::uint32_t quadLightMaterialBase() const { return quadLightMaterialBase_; }
-    std::uint32_t quadLightMesh() const { return std::uint32_t(meshes_.size() - 1); }
 
     /// A ray origin moved off the surface at p (geometric normal n, toward n): see
     /// offsetRayOrigin. The second form moves it to the side `direction` leaves to.
@@ -76,18 +78,22 @@ class TraceableScene {
         const Mesh* mesh = nullptr;
         glm::mat4 objectToWorld{1.0f};
         glm::mat3 normalToWorld{1.0f};
-        RTCScene scene = nullptr;
+        int material = -1;  ///< every triangle's material, or -1: the mesh's own per triangle
     };
 
-    void addMesh(const Mesh& mesh, RTCDevice device);
+    void addInstance(const Mesh& mesh, RTCScene scene, const glm::mat4& objectToWorld,
+                     int material);
+    std::uint32_t materialOf(const MeshData& m, std::uint32_t triangle) const {
+        return m.material >= 0 ? std::uint32_t(m.material) : m.mesh->materialIds[triangle];
+    }
     WorldTriangle worldTriangle(std::uint32_t mesh, std::uint32_t triangle) const;
     void fillSurfacePoint(const RTCRayHit& rh, SurfacePoint& hit) const;
     std::vector<WorldTriangle> trianglesWhere(bool (*predicate)(const Material&)) const;
     void computeMeanAlbedo(const std::vector<Texture>& textures);
 
+    const SceneGeometry& geometry_;
     std::vector<Material> materials_;
     const std::vector<Texture>* textures_ = nullptr;
-    Mesh quadLightMesh_;
     std::uint32_t quadLightMaterialBase_ = 0;
     std::vector<MeshData> meshes_;
     RTCScene top_ = nullptr;

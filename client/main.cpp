@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include "ClientSession.h"
+#include "util/HostPort.h"
 
 int main(int argc, char** argv) {
     CLI::App app{"igi-client: renders tiles for an igi-master"};
@@ -28,18 +29,13 @@ int main(int argc, char** argv) {
 
     spdlog::set_level(spdlog::level::from_str(logLevel));
     spdlog::set_pattern("[%H:%M:%S.%e] [client %P] [%l] %v");
-    const auto colon = connect.rfind(':');
-    if (colon == std::string::npos) {
-        spdlog::error("--connect needs HOST:PORT, got '{}'", connect);
-        return 2;
-    }
-    options.host = connect.substr(0, colon);
     try {
-        const int port = std::stoi(connect.substr(colon + 1));
-        if (port <= 0 || port > 65535) throw std::out_of_range("port");
-        options.port = static_cast<std::uint16_t>(port);
-    } catch (const std::exception&) {
-        spdlog::error("--connect: '{}' is not a port number", connect.substr(colon + 1));
+        const igi::HostPort hp = igi::parseHostPort(connect, "--connect");
+        if (hp.port == 0) throw std::invalid_argument("--connect: port 0 is no master's port");
+        options.host = hp.host;
+        options.port = hp.port;
+    } catch (const std::invalid_argument& e) {
+        spdlog::error("{}", e.what());
         return 2;
     }
     try {

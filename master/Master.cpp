@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "Codec.h"
+#include "ControlCommand.h"
+#include "SequencePath.h"
 #include "image/ImageIO.h"
 #include "render/Tile.h"
 #include "scene/RenderSettingsJson.h"
@@ -35,6 +37,7 @@ Master::Master(MasterOptions options)
       acceptor_(io_),
       tick_(io_),
       pool_(options_.threads > 0 ? options_.threads : ThreadPool::defaultThreads()),
+      signals_(io_, SIGINT, SIGTERM),
       created_(Clock::now()) {}
 
 Master::~Master() = default;
@@ -51,6 +54,10 @@ void Master::loadScene() {
     sceneData_.settings = scene_.render;
     sceneData_.image = scene_.image;
     sceneData_.camera = scene_.camera;
+    std::unique_ptr<Animation> animation;
+    if (!options_.animation.empty())
+        animation = std::make_unique<Animation>(Animation::load(options_.animation, scene_));
+    timeline_ = std::make_unique<SceneTimeline>(SceneState::of(scene_), std::move(animation));
 
     const RenderSettings& s = scene_.render;
     auto layout = makeTiles(scene_.image.width, scene_.image.height, s.interleaveX, s.interleaveY,
@@ -150,7 +157,10 @@ void Master::onHello(Session& s, const proto::Hello& hello) {
     c.host = hello.hostname;
     c.threads = hello.threads;
     s.connection->send(proto::Welcome{s.id, scene_.render.seed}, 0, 0);
-    s.connection->send(sceneData_, 0, 0);
+    // The scene as loaded, plus the changes that bring it to now; then every update that follows.
+    sceneData_.changes = timeline_->changesSinceLoad();
+    s.connection->send(sceneData_, 0, timeline_->epoch());
+    s.sceneSent = true;
 }
 
 void Master::onSceneReady(Session& s, const proto::SceneReady& ready) {
@@ -182,15 +192,23 @@ void Master::maybeStart() {
 void Master::openFramesAsNeeded() {
     // Two frames in flight at most: the next one opens once every tile of the previous one
     // has been handed out, so clients never wait for the master to finish a frame.
-    while (nextFrameToOpen_ < std::uint32_t(options_.frames) &&
-           nextFrameToOpen_ <= nextFrameToFinish_ + 1 &&
+    while (framesLeft(nextFrameToOpen_) && nextFrameToOpen_ <= nextFrameToFinish_ + 1 &&
            (nextFrameToOpen_ == nextFrameToFinish_ ||
             scheduler_->frameFullyAssigned(nextFrameToOpen_ - 1))) {
         const std::uint32_t f = nextFrameToOpen_++;
+        // A changed scene is a new epoch: every client gets the update before any tile of it
+        // (one connection keeps the order), and keeps the old epoch for tiles still out.
+        const SceneTimeline::FrameStart start = timeline_->beginFrame(f);
+        if (!start.changes.empty()) {
+            const proto::SceneUpdate update{start.changes};
+            for (auto& [id, s] : sessions_)
+                if (s.sceneSent) s.connection->send(update, f, start.epoch);
+        }
         scheduler_->openFrame(f);
         auto record = std::make_unique<FrameRecord>();
         record->buffer.reset(scene_.image.width, scene_.image.height);
         record->opened = Clock::now();
+        record->epoch = start.epoch;
         frames_[f] = std::move(record);
     }
 }
@@ -222,7 +240,7 @@ void Master::dispatch() {
             msg.height = std::uint16_t(t.height);
             msg.kx = std::uint16_t(t.kx);
             msg.ky = std::uint16_t(t.ky);
-            s.connection->send(msg, a->frame, 0);
+            s.connection->send(msg, a->frame, frames_.at(a->frame)->epoch);
         }
     }
 }
@@ -308,8 +326,12 @@ void Master::finishReadyFrames() {
     FrameRecord* record = frames_.at(f).get();
     if (!scheduler_->frameDone(f) || record->decoding > 0) return;
     compositing_ = true;
-    pool_.submit([this, f, record] {
+    // Accumulation restarts when the scene changed, and goes on while it does not.
+    const bool restart = compositedEpoch_ != std::int64_t(record->epoch);
+    compositedEpoch_ = record->epoch;
+    pool_.submit([this, f, record, restart] {
         const auto start = Clock::now();
+        if (restart) compositor_->resetAccumulation();
         compositor_->composite(record->buffer);
         const double seconds = secondsSince(start);
         boost::asio::post(io_, [this, f, seconds] { onComposited(f, seconds); });
@@ -322,11 +344,16 @@ void Master::onComposited(std::uint32_t f, double seconds) {
     fs.compositeSeconds = seconds;
     fs.decodeSeconds = frames_.at(f)->decodeSeconds;
     fs.seconds = secondsSince(frames_.at(f)->opened);
+    fs.epoch = frames_.at(f)->epoch;
+    fs.accumulated = std::uint32_t(compositor_->accumulatedFrames());
+    stats_.noteFrameDone(secondsSince(created_));
     spdlog::info("{}", stats_.summaryLine(f));
+    writeFrameImages(f);
     scheduler_->closeFrame(f);
+    timeline_->endFrame(f);
     frames_.erase(f);
     ++nextFrameToFinish_;
-    if (nextFrameToFinish_ == std::uint32_t(options_.frames)) {
+    if (!framesLeft(nextFrameToFinish_)) {
         renderEnd_ = Clock::now();
         endSession(0);
         return;
@@ -389,6 +416,11 @@ void Master::endSession(int exitCode) {
     exitCode_ = exitCode;
     boost::system::error_code ignored;
     acceptor_.close(ignored);
+    signals_.cancel(ignored);
+    if (control_) control_->close();
+    for (auto& [path, reply] : std::exchange(snapshots_, {}))
+        reply(nlohmann::json{{"ok", false}, {"error", "the session ended before the next frame"}}
+                  .dump());
     // Clients close on Shutdown; closing from this side could cut a client off while it still
     // writes a last result, which it would report as an error. Stragglers are closed after a
     // grace period.
@@ -412,6 +444,20 @@ int Master::run() {
         return 2;
     }
     listen();
+    if (options_.control) {
+        control_ = std::make_unique<ControlServer>(
+            io_, options_.controlHost, options_.controlPort,
+            [this](const std::string& line, ControlServer::Reply reply) {
+                onControl(line, std::move(reply));
+            });
+        spdlog::info("control commands on {}:{}", options_.controlHost, control_->port());
+    }
+    signals_.async_wait([this](const boost::system::error_code& ec, int signal) {
+        if (ec) return;
+        spdlog::warn("signal {}: ending the session after {} frames", signal, nextFrameToFinish_);
+        renderEnd_ = Clock::now();
+        endSession(0);
+    });
     if (options_.localClients > 0) {
         const unsigned threads =
             options_.clientThreads > 0
@@ -429,6 +475,7 @@ int Master::run() {
     }
     scheduleTick();
     io_.run();
+    pool_.waitIdle();  // a frame being composited or written, when the session was stopped
     localClients_.stop(10.0);
     if (exitCode_ != 0) return exitCode_;
 
@@ -439,7 +486,7 @@ int Master::run() {
     }
     const double start = std::chrono::duration<double>(renderStart_ - created_).count();
     const double end = std::chrono::duration<double>(renderEnd_ - created_).count();
-    spdlog::info("{} frames in {:.2f} s: {:.2f} fps", options_.frames, end - start,
+    spdlog::info("{} frames in {:.2f} s: {:.2f} fps", nextFrameToFinish_, end - start,
                  stats_.fps(end - start));
     if (!options_.statsJson.empty()) {
         stats_.writeJson(
@@ -452,6 +499,76 @@ int Master::run() {
     }
 
     return 0;
+}
+
+}  // namespace igi
+
+namespace igi {
+
+void Master::writeFrameImages(std::uint32_t frame) {
+    if (options_.outputSequence.empty() && snapshots_.empty()) return;
+    // The compositor's image changes with the next frame: write a copy, off the io thread.
+    auto image = std::make_shared<Image>(compositor_->shown());
+    const float exposure = scene_.image.exposure;
+    if (!options_.outputSequence.empty()) {
+        pool_.submit([image, exposure, path = sequencePath(options_.outputSequence, frame)] {
+            try {
+                writeImage(path, *image, exposure);
+            } catch (const std::exception& e) {
+                spdlog::error("{}", e.what());
+            }
+        });
+    }
+    for (auto& [path, reply] : std::exchange(snapshots_, {})) {
+        pool_.submit([this, image, exposure, path, reply, frame] {
+            nlohmann::json answer{{"ok", true}, {"path", path}, {"frame", frame}};
+            try {
+                writeImage(path, *image, exposure);
+            } catch (const std::exception& e) {
+                answer = {{"ok", false}, {"error", e.what()}};
+            }
+            boost::asio::post(io_, [reply, text = answer.dump()] { reply(text); });
+        });
+    }
+}
+
+void Master::onControl(const std::string& line, ControlServer::Reply reply) {
+    auto error = [&](const std::string& what) {
+        reply(nlohmann::json{{"ok", false}, {"error", what}}.dump());
+    };
+    ControlRequest request;
+    try {
+        request = parseControlCommand(line, scene_, timeline_->controlled());
+    } catch (const std::exception& e) {
+        return error(e.what());
+    }
+    switch (request.kind) {
+        case ControlRequest::Kind::Change:
+            try {
+                timeline_->control(request.changes);
+            } catch (const std::exception& e) {
+                return error(e.what());
+            }
+            return reply(nlohmann::json{
+                {"ok", true}, {"changes", request.changes.size()}, {"from_frame", nextFrameToOpen_}}
+                             .dump());
+        case ControlRequest::Kind::Status:
+            return reply(nlohmann::json{{"ok", true},
+                                        {"frames_done", nextFrameToFinish_},
+                                        {"epoch", timeline_->epoch()},
+                                        {"accumulated", compositor_->accumulatedFrames()},
+                                        {"clients", readyClients()},
+                                        {"fps", stats_.recentFps()}}
+                             .dump());
+        case ControlRequest::Kind::Snapshot:
+            snapshots_.emplace_back(request.path,
+                                    std::move(reply));  // answered after the next frame
+            return;
+        case ControlRequest::Kind::Stop:
+            reply(nlohmann::json{{"ok", true}, {"frames_done", nextFrameToFinish_}}.dump());
+            renderEnd_ = Clock::now();
+            return endSession(0);
+    }
 }
 
 }  // namespace igi

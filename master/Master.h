@@ -11,10 +11,14 @@
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/steady_timer.hpp>
 
+#include <boost/asio/signal_set.hpp>
+
+#include "ControlServer.h"
 #include "FrameCompositor.h"
 #include "LocalClients.h"
 #include "MasterOptions.h"
 #include "Messages.h"
+#include "SceneTimeline.h"
 #include "Statistics.h"
 #include "TileScheduler.h"
 #include "net/Connection.h"
@@ -44,6 +48,7 @@ class Master {
         ClientId id = 0;
         std::shared_ptr<net::Connection> connection;
         bool helloed = false;
+        bool sceneSent = false;  ///< it has the scene: it gets every update from now on
         bool ready = false;
         std::string host;
         std::uint32_t threads = 1;
@@ -53,6 +58,7 @@ class Master {
     struct FrameRecord {
         FrameBuffer buffer;
         std::chrono::steady_clock::time_point opened;
+        std::uint32_t epoch = 0;   ///< the scene state every tile of it renders
         int decoding = 0;          ///< tile results being decoded on the pool
         double decodeSeconds = 0;  ///< pool time spent decoding and scattering its tiles
     };
@@ -69,6 +75,11 @@ class Master {
                        const std::string& error, const proto::TileStats& tileStats,
                        std::uint64_t wireBytes, double seconds);
     void onComposited(std::uint32_t frame, double seconds);
+    void onControl(const std::string& line, ControlServer::Reply reply);
+    void writeFrameImages(std::uint32_t frame);
+    bool framesLeft(std::uint32_t frame) const {
+        return options_.frames == 0 || frame < std::uint32_t(options_.frames);
+    }
     void refuse(Session& s, const std::string& reason);
 
     void maybeStart();
@@ -89,6 +100,12 @@ class Master {
     proto::SceneData sceneData_;
     std::unique_ptr<TileScheduler> scheduler_;
     std::unique_ptr<FrameCompositor> compositor_;
+    std::unique_ptr<SceneTimeline> timeline_;
+    std::unique_ptr<ControlServer> control_;
+    boost::asio::signal_set signals_;
+    std::int64_t compositedEpoch_ = -1;  ///< epoch of the frame last composited
+    /// Snapshot requests waiting for the next composited frame.
+    std::vector<std::pair<std::string, ControlServer::Reply>> snapshots_;
     Statistics stats_;
     LocalClients localClients_;
     std::map<ClientId, Session> sessions_;

@@ -11,7 +11,12 @@ namespace igi {
 struct MasterOptions {
     std::filesystem::path scene;
     std::vector<std::filesystem::path> outputs;  ///< .png and/or .exr, written at the end
-    int frames = 1;
+    int frames = 1;                   ///< 0: until stopped (control "stop", SIGINT or SIGTERM)
+    std::filesystem::path animation;  ///< keyframes applied frame by frame (docs/ANIMATION.md)
+    std::string outputSequence;       ///< e.g. out/frame_%04d.png: every frame's image
+    bool control = false;             ///< accept control commands (docs/ANIMATION.md)
+    std::string controlHost = "127.0.0.1";
+    std::uint16_t controlPort = 0;  ///< 0: any free port (logged)
     int localClients = 0;
     int remoteClients = 0;  ///< wait for this many clients from anywhere
     std::string listenHost = "127.0.0.1";

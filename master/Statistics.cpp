@@ -52,6 +52,17 @@ void Statistics::noteAssignment(std::uint32_t frameIndex, ClientId clientId, int
     client(clientId).setsByFrame[frameIndex].insert(k);
 }
 
+void Statistics::noteFrameDone(double seconds) {
+    doneTimes_.push_back(seconds);
+    if (doneTimes_.size() > 16) doneTimes_.pop_front();
+}
+
+double Statistics::recentFps() const {
+    if (doneTimes_.size() < 2) return 0.0;
+    const double span = doneTimes_.back() - doneTimes_.front();
+    return span > 0 ? double(doneTimes_.size() - 1) / span : 0.0;
+}
+
 double Statistics::fps(double totalSeconds) const {
     return totalSeconds > 0 ? double(frames_.size()) / totalSeconds : 0.0;
 }
@@ -82,6 +93,8 @@ void Statistics::writeJson(const std::filesystem::path& path,
              {"seconds", f.seconds},
              {"composite_seconds", f.compositeSeconds},
              {"decode_seconds", f.decodeSeconds},
+             {"epoch", f.epoch},
+             {"accumulated", f.accumulated},
 
              {"rays", f.rays},
              {"shadow_rays", f.shadowRays},

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -15,9 +16,11 @@ namespace igi {
 /// What one frame cost, summed from its tiles and measured on the master.
 struct FrameStats {
     std::uint32_t index = 0;
-    double seconds = 0;           ///< from the frame's first tile handed out to its image
-    double compositeSeconds = 0;  ///< master time in the discontinuity buffer and accumulation
-    double decodeSeconds = 0;     ///< master time decoding tile results (summed over threads)
+    double seconds = 0;             ///< from the frame's first tile handed out to its image
+    double compositeSeconds = 0;    ///< master time in the discontinuity buffer and accumulation
+    double decodeSeconds = 0;       ///< master time decoding tile results (summed over threads)
+    std::uint32_t epoch = 0;        ///< the scene state it shows
+    std::uint32_t accumulated = 0;  ///< frames in the running mean it was shown as
     std::uint64_t rays = 0;
     std::uint64_t shadowRays = 0;
     std::uint64_t wireBytes = 0;  ///< tile results received for it, headers included
@@ -67,11 +70,16 @@ class Statistics {
     /// One line for people watching.
     std::string summaryLine(std::uint32_t frame) const;
     double fps(double totalSeconds) const;
+    /// A frame was shown at `seconds` (from the master's start).
+    void noteFrameDone(double seconds);
+    /// Frames per second over the last few frames shown.
+    double recentFps() const;
 
   private:
     std::map<std::uint32_t, FrameStats> frames_;
     std::map<ClientId, ClientStats> clients_;
     std::map<std::uint32_t, std::uint64_t> vplSum_, photonSum_;
+    std::deque<double> doneTimes_;  ///< when the last frames were shown
 };
 
 }  // namespace igi

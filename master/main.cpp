@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "Master.h"
+#include "SequencePath.h"
+#include "util/HostPort.h"
 
 namespace {
 
@@ -35,9 +37,18 @@ int main(int argc, char** argv) {
     app.add_option("--scene", scene, "scene file (.json) or a bare .obj")->required();
     app.add_option("--output", outputs,
                    "image to write at the end (.png tone-mapped, .exr linear); repeatable");
-    app.add_option("--frames", o.frames, "frames to render")
+    app.add_option("--frames", o.frames,
+                   "frames to render (0: until stopped by igi-ctl stop or a signal)")
         ->capture_default_str()
-        ->check(CLI::Range(1, 1 << 24));
+        ->check(CLI::Range(0, 1 << 24));
+    app.add_option("--animation", o.animation,
+                   "keyframed changes applied frame by frame (docs/ANIMATION.md)");
+    app.add_option("--output-sequence", o.outputSequence,
+                   "write every frame, e.g. out/frame_%04d.png (.png or .exr)");
+    std::string control;
+    auto* controlOpt =
+        app.add_option("--control", control,
+                       "accept control commands (igi-ctl) on HOST:PORT, e.g. 127.0.0.1:7879");
     app.add_option("--local-clients", o.localClients,
                    "igi-client processes to start on this machine")
         ->capture_default_str()
@@ -136,23 +147,24 @@ int main(int argc, char** argv) {
         return app.exit(e);
     }
     o.renderOverridesJson = render.dump();
-    if (listen.empty()) {
-        o.listenPort = o.remoteClients > 0 ? 7878 : 0;
-    } else {
-        const auto colon = listen.rfind(':');
-        if (colon == std::string::npos) {
-            spdlog::error("--listen needs HOST:PORT, got '{}'", listen);
-            return 2;
+    try {
+        if (listen.empty()) {
+            o.listenPort = o.remoteClients > 0 ? 7878 : 0;
+        } else {
+            const igi::HostPort hp = igi::parseHostPort(listen, "--listen");
+            o.listenHost = hp.host;
+            o.listenPort = hp.port;
         }
-        o.listenHost = listen.substr(0, colon);
-        try {
-            const int port = std::stoi(listen.substr(colon + 1));
-            if (port < 0 || port > 65535) throw std::out_of_range("port");
-            o.listenPort = static_cast<std::uint16_t>(port);
-        } catch (const std::exception&) {
-            spdlog::error("--listen: '{}' is not a port number", listen.substr(colon + 1));
-            return 2;
+        if (controlOpt->count()) {
+            const igi::HostPort hp = igi::parseHostPort(control, "--control");
+            o.control = true;
+            o.controlHost = hp.host;
+            o.controlPort = hp.port;
         }
+        if (!o.outputSequence.empty()) igi::checkSequencePattern(o.outputSequence);
+    } catch (const std::invalid_argument& e) {
+        spdlog::error("{}", e.what());
+        return 2;
     }
     if (o.localClients + o.remoteClients == 0) {
         spdlog::error("no clients: give --local-clients N and/or --clients N");

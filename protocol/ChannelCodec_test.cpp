@@ -404,7 +404,9 @@ TileChannels decode(const std::vector<std::uint8_t>& bytes) {
 
 template <typename T>
 bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+    // memcmp must not see the null pointers of empty vectors, even for zero bytes.
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 void expectSameBits(const TileChannels& a, const TileChannels& b) {

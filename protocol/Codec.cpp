@@ -4,15 +4,28 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <type_traits>
 
 #include "ByteReader.h"
 #include "ByteWriter.h"
+#include "ChangeCodec.h"
 #include "ChannelCodec.h"
 #include "Compression.h"
 #include "SceneCodec.h"
 
 namespace igi::proto {
 namespace {
+
+// SceneData's fields, in the order of its body: a new field must be added to the codec and to
+// docs/PROTOCOL.md, or it silently never reaches the clients.
+struct SceneDataFields {
+    SceneBundle bundle;
+    RenderSettings settings;
+    ImageSettings image;
+    Camera camera;
+    std::vector<SceneChange> changes;
+};
+static_assert(sizeof(SceneData) == sizeof(SceneDataFields), "SceneData changed: update Codec.cpp");
 
 constexpr int kSceneZstdLevel = 3;
 constexpr std::uint32_t kMaxThreads = 1u << 16;
@@ -52,6 +65,7 @@ void write(ByteWriter& out, const SceneData& m) {
     writeRenderSettings(b, m.settings);
     writeImageSettings(b, m.image);
     writeCamera(b, m.camera);
+    writeSceneChanges(b, m.changes);
     if (body.size() > kSceneDataBodyLimit)
         throw ProtocolError("SceneData of " + std::to_string(body.size()) + " bytes exceeds the " +
                             std::to_string(kSceneDataBodyLimit) + "-byte limit");
@@ -78,6 +92,10 @@ void write(ByteWriter& out, const TileResult& m) {
     out.u32(m.stats.setsBuilt);
     out.f32(m.stats.renderSeconds);
     writeTileChannels(out, m.channels);
+}
+
+void write(ByteWriter& out, const SceneUpdate& m) {
+    writeSceneChanges(out, m.changes);
 }
 
 void write(ByteWriter&, const Heartbeat&) {}
@@ -120,6 +138,7 @@ SceneData readSceneData(ByteReader& in) {
     m.settings = readRenderSettings(b);
     m.image = readImageSettings(b);
     m.camera = readCamera(b);
+    m.changes = readSceneChanges(b);
     b.expectEnd();
     return m;
 }
@@ -163,6 +182,10 @@ TileResult readTileResult(ByteReader& in) {
     return m;
 }
 
+SceneUpdate readSceneUpdate(ByteReader& in) {
+    return SceneUpdate{readSceneChanges(in)};
+}
+
 Error readError(ByteReader& in) {
     return Error{in.string()};
 }
@@ -194,13 +217,15 @@ std::uint32_t maxPayloadSize(MessageType type) {
             return kTileResultPayloadLimit;
         case MessageType::SceneData:
             return kSceneDataPayloadLimit;
+        case MessageType::SceneUpdate:
+            return kSceneUpdatePayloadLimit;
     }
     return 0;
 }
 
 bool isKnownType(std::uint16_t type) {
     return type >= static_cast<std::uint16_t>(MessageType::Hello) &&
-           type <= static_cast<std::uint16_t>(MessageType::Error);
+           type <= static_cast<std::uint16_t>(MessageType::SceneUpdate);
 }
 
 std::string messageTypeName(MessageType type) {
@@ -223,13 +248,16 @@ std::string messageTypeName(MessageType type) {
             return "Shutdown";
         case MessageType::Error:
             return "Error";
+        case MessageType::SceneUpdate:
+            return "SceneUpdate";
     }
     return "type " + std::to_string(static_cast<unsigned>(type));
 }
 
 MessageType typeOf(const Message& message) {
     // The variant's alternatives are declared in the order of the type numbers.
-    static_assert(std::variant_size_v<Message> == 9);
+    static_assert(std::variant_size_v<Message> == 10);
+    static_assert(std::is_same_v<std::variant_alternative_t<9, Message>, SceneUpdate>);
     return static_cast<MessageType>(message.index() + 1);
 }
 
@@ -334,6 +362,9 @@ Message decodeMessage(const Header& header, std::span<const std::uint8_t> payloa
             break;
         case MessageType::Error:
             m = readError(in);
+            break;
+        case MessageType::SceneUpdate:
+            m = readSceneUpdate(in);
             break;
     }
     in.expectEnd();

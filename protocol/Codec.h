@@ -17,6 +17,7 @@ constexpr std::uint32_t kSmallPayloadLimit = 4u << 10;
 constexpr std::uint32_t kErrorPayloadLimit = 64u << 10;
 constexpr std::uint32_t kTileResultPayloadLimit = 64u << 20;
 constexpr std::uint32_t kSceneDataPayloadLimit = 1u << 30;
+constexpr std::uint32_t kSceneUpdatePayloadLimit = 16u << 20;
 /// Largest uncompressed SceneData body a client will allocate.
 constexpr std::uint64_t kSceneDataBodyLimit = std::uint64_t{2} << 30;
 

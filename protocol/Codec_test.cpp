@@ -7,6 +7,7 @@
 #include <random>
 
 #include "ByteWriter.h"
+#include "ChangeCodec.h"
 #include "ChannelCodec.h"
 #include "Compression.h"
 #include "SceneCodec.h"
@@ -38,6 +39,8 @@ void expectSame(const SceneData& a, const SceneData& b) {
     EXPECT_EQ(a.image.height, b.image.height);
     EXPECT_EQ(a.image.exposure, b.image.exposure);
     EXPECT_TRUE(a.camera == b.camera);
+    EXPECT_EQ(a.changes.size(), b.changes.size());
+    EXPECT_TRUE(a.changes == b.changes);  // every field of every change (ChangeCodec_test)
 }
 void expectSame(const SceneReady& a, const SceneReady& b) {
     EXPECT_EQ(a.triangles, b.triangles);
@@ -74,6 +77,10 @@ void expectSame(const TileResult& a, const TileResult& b) {
         EXPECT_NEAR(a.channels.depth[i], b.channels.depth[i], 1e-3f * a.channels.depth[i]);
         expectNear(a.channels.unfiltered[i], b.channels.unfiltered[i], 0.01f);
     }
+}
+void expectSame(const SceneUpdate& a, const SceneUpdate& b) {
+    EXPECT_EQ(a.changes.size(), b.changes.size());
+    EXPECT_TRUE(a.changes == b.changes);
 }
 void expectSame(const Heartbeat&, const Heartbeat&) {}
 void expectSame(const Shutdown&, const Shutdown&) {}
@@ -138,6 +145,9 @@ TEST(Codec, TypeOfMatchesTheTypeNumbers) {
     EXPECT_EQ(typeOf(SceneData{}), MessageType::SceneData);
     EXPECT_EQ(typeOf(TileResult{}), MessageType::TileResult);
     EXPECT_EQ(typeOf(Error{}), MessageType::Error);
+    EXPECT_EQ(typeOf(SceneUpdate{}), MessageType::SceneUpdate);
+    EXPECT_EQ(static_cast<int>(MessageType::SceneUpdate), 10);
+    EXPECT_EQ(messageTypeName(MessageType::SceneUpdate), "SceneUpdate");
 }
 
 TEST(Codec, HeaderLayoutIsLittleEndianAsDocumented) {
@@ -159,8 +169,8 @@ TEST(Codec, ReencodingDecodedTileIsBitIdentical) {
 }
 
 TEST(Codec, EmptyFieldsRoundTrip) {
-    for (const Message& m :
-         {Message(Hello{}), Message(Error{}), Message(TileResult{}), Message(SceneData{})}) {
+    for (const Message& m : {Message(Hello{}), Message(Error{}), Message(TileResult{}),
+                             Message(SceneData{}), Message(SceneUpdate{})}) {
         SCOPED_TRACE(messageTypeName(typeOf(m)));
         const auto bytes = encodeMessage(m, 0, 0);
         expectSameMessage(m, decodeMessage(headerOf(bytes), payloadOf(bytes)));
@@ -206,8 +216,10 @@ TEST(Codec, HeaderRejectsUnknownTypes) {
     EXPECT_EQ(headerError(h), "unknown message type 77");
     h[6] = 0;
     EXPECT_EQ(headerError(h), "unknown message type 0");
+    h[6] = 11;
+    EXPECT_EQ(headerError(h), "unknown message type 11");
     h[6] = 10;
-    EXPECT_EQ(headerError(h), "unknown message type 10");
+    EXPECT_EQ(headerError(h), "(no error)");  // SceneUpdate
 }
 
 TEST(Codec, HeaderRejectsNonZeroReserved) {
@@ -221,10 +233,11 @@ TEST(Codec, HeaderRejectsOversizedPayloadPerType) {
         MessageType type;
         std::uint32_t limit;
     };
-    for (Case c : {Case{MessageType::Hello, 4096}, Case{MessageType::TileAssign, 4096},
-                   Case{MessageType::Heartbeat, 0}, Case{MessageType::Shutdown, 0},
-                   Case{MessageType::Error, 65536}, Case{MessageType::TileResult, 64u << 20},
-                   Case{MessageType::SceneData, 1u << 30}}) {
+    for (Case c :
+         {Case{MessageType::Hello, 4096}, Case{MessageType::TileAssign, 4096},
+          Case{MessageType::Heartbeat, 0}, Case{MessageType::Shutdown, 0},
+          Case{MessageType::Error, 65536}, Case{MessageType::TileResult, 64u << 20},
+          Case{MessageType::SceneData, 1u << 30}, Case{MessageType::SceneUpdate, 16u << 20}}) {
         SCOPED_TRACE(messageTypeName(c.type));
         EXPECT_EQ(decodeHeader(goodHeader(c.type, c.limit)).payloadSize, c.limit);
         EXPECT_THROW(decodeHeader(goodHeader(c.type, c.limit + 1)), ProtocolError);
@@ -236,7 +249,8 @@ TEST(Codec, HeaderRejectsOversizedPayloadPerType) {
 TEST(Codec, HeaderClaimingThreeGigabytesIsRefused) {
     // The header alone is enough to refuse: nothing is read or allocated for the payload.
     const std::uint32_t threeGiB = 3u << 30;
-    for (MessageType t : {MessageType::SceneData, MessageType::TileResult, MessageType::Hello})
+    for (MessageType t : {MessageType::SceneData, MessageType::TileResult, MessageType::Hello,
+                          MessageType::SceneUpdate})
         EXPECT_THROW(decodeHeader(goodHeader(t, threeGiB)), ProtocolError);
 }
 
@@ -331,14 +345,20 @@ std::vector<std::uint8_t> sceneDataPayload(const std::vector<std::uint8_t>& body
     return payload;
 }
 
-std::string sceneDataError(const SceneData& m) {
+/// The uncompressed body of a SceneData, as the encoder lays it out.
+std::vector<std::uint8_t> sceneDataBody(const SceneData& m) {
     std::vector<std::uint8_t> body;
     ByteWriter out(body);
     writeSceneBundle(out, m.bundle);
     writeRenderSettings(out, m.settings);
     writeImageSettings(out, m.image);
     writeCamera(out, m.camera);
-    return errorOf(MessageType::SceneData, sceneDataPayload(body));
+    writeSceneChanges(out, m.changes);
+    return body;
+}
+
+std::string sceneDataError(const SceneData& m) {
+    return errorOf(MessageType::SceneData, sceneDataPayload(sceneDataBody(m)));
 }
 
 TEST(Codec, SceneDataRangesAreValidated) {
@@ -377,6 +397,33 @@ TEST(Codec, SceneDataRangesAreValidated) {
     m = test::sampleSceneData();
     m.bundle.files[""] = "x";
     expectRefused(m, "empty path");
+    m = test::sampleSceneData();
+    std::get<MaterialChange>(m.changes.at(4)).value.ior = -1.0f;
+    expectRefused(m, "SceneData body: change 4 (material): ior is -1");
+}
+
+TEST(Codec, SceneDataCarriesItsChangesAtTheEndOfTheBody) {
+    // The encoder's body is the documented one: the changes follow the camera.
+    const SceneData m = test::sampleSceneData();
+    const auto body = sceneDataBody(m);
+    const auto payload = encodePayload(m);
+    ByteReader in(payload, "test");
+    ASSERT_EQ(in.u64(), body.size());
+    EXPECT_EQ(zstdDecompressExact(in.bytes(in.remaining()), body.size(), "test"), body);
+    const auto decoded = std::get<SceneData>(decodeAs(MessageType::SceneData, payload));
+    ASSERT_EQ(decoded.changes.size(), test::sampleChanges().size());
+    EXPECT_TRUE(decoded.changes == test::sampleChanges());
+}
+
+TEST(Codec, SceneDataBodyTruncatedAnywhereThrows) {
+    // Truncating the compressed payload mostly exercises zstd; this cuts the body itself, so
+    // every field of the changes at its end is cut somewhere.
+    const auto body = sceneDataBody(test::sampleSceneData());
+    for (std::size_t n = 0; n < body.size(); ++n) {
+        const std::vector<std::uint8_t> cut(body.begin(), body.begin() + n);
+        EXPECT_THROW(decodeAs(MessageType::SceneData, sceneDataPayload(cut)), ProtocolError)
+            << "body truncated to " << n << " of " << body.size() << " bytes";
+    }
 }
 
 TEST(Codec, SceneDataFileCountCannotExceedTheBytes) {
@@ -403,6 +450,7 @@ TEST(Codec, SceneDataDuplicateFilesAreRefused) {
     writeRenderSettings(out, RenderSettings{});
     writeImageSettings(out, ImageSettings{});
     writeCamera(out, Camera{});
+    out.u32(0);  // no changes
     EXPECT_NE(errorOf(MessageType::SceneData, sceneDataPayload(body)).find("twice"),
               std::string::npos);
 }
@@ -515,13 +563,7 @@ TEST(Codec, FuzzedPayloadsThrowOrDecode) {
 
 TEST(Codec, FuzzedSceneDataBodiesThrowOrDecode) {
     // Mutations of the compressed bytes rarely survive zstd; these reach the body's parser.
-    std::vector<std::uint8_t> body;
-    ByteWriter out(body);
-    const SceneData m = test::sampleSceneData();
-    writeSceneBundle(out, m.bundle);
-    writeRenderSettings(out, m.settings);
-    writeImageSettings(out, m.image);
-    writeCamera(out, m.camera);
+    const auto body = sceneDataBody(test::sampleSceneData());
     std::mt19937 rng(7);
     int decoded = 0;
     for (int i = 0; i < 3000; ++i)

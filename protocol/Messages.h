@@ -10,6 +10,7 @@
 #include "render/TileChannels.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
+#include "scene/SceneChange.h"
 #include "scene/SceneLoader.h"
 
 namespace igi::proto {
@@ -25,15 +26,16 @@ constexpr std::uint16_t kVersion = 1;
 constexpr std::size_t kHeaderSize = 24;
 
 enum class MessageType : std::uint16_t {
-    Hello = 1,       ///< client -> master, first message
-    Welcome = 2,     ///< master -> client, answer to Hello
-    SceneData = 3,   ///< master -> client: the scene bundle and the settings to render it with
-    SceneReady = 4,  ///< client -> master: the scene is built, tiles may come
-    TileAssign = 5,  ///< master -> client: render one tile
-    TileResult = 6,  ///< client -> master: one tile's pixels
-    Heartbeat = 7,   ///< either way, keeps an idle connection known alive
-    Shutdown = 8,    ///< master -> client: the session is over, exit
-    Error = 9,       ///< either way: a reason, then the sender closes
+    Hello = 1,         ///< client -> master, first message
+    Welcome = 2,       ///< master -> client, answer to Hello
+    SceneData = 3,     ///< master -> client: the scene bundle and the settings to render it with
+    SceneReady = 4,    ///< client -> master: the scene is built, tiles may come
+    TileAssign = 5,    ///< master -> client: render one tile
+    TileResult = 6,    ///< client -> master: one tile's pixels
+    Heartbeat = 7,     ///< either way, keeps an idle connection known alive
+    Shutdown = 8,      ///< master -> client: the session is over, exit
+    Error = 9,         ///< either way: a reason, then the sender closes
+    SceneUpdate = 10,  ///< master -> client: changes that make the header's epoch
 };
 
 struct Header {
@@ -63,6 +65,9 @@ struct SceneData {
     RenderSettings settings;
     ImageSettings image;
     Camera camera;
+    /// Applied right after loading (and after `camera`), so that a client joining mid-session
+    /// starts in the master's current state: the state of the header's epoch.
+    std::vector<SceneChange> changes;
 };
 
 struct SceneReady {
@@ -95,13 +100,21 @@ struct TileResult {
     TileChannels channels;  ///< quantized and compressed on the wire
 };
 
+/// Applying `changes`, in order, to the scene state of epoch e - 1 gives the state of epoch e,
+/// the epoch in the header. The master sends it to every client before any TileAssign of
+/// epoch e.
+struct SceneUpdate {
+    std::vector<SceneChange> changes;
+};
+
 struct Heartbeat {};
 struct Shutdown {};
 struct Error {
     std::string reason;
 };
 
+/// In the order of the type numbers: typeOf(m) is m.index() + 1.
 using Message = std::variant<Hello, Welcome, SceneData, SceneReady, TileAssign, TileResult,
-                             Heartbeat, Shutdown, Error>;
+                             Heartbeat, Shutdown, Error, SceneUpdate>;
 
 }  // namespace igi::proto

@@ -20,6 +20,58 @@ inline Welcome sampleWelcome() {
     return {42, 0x0123456789ABCDEFull};
 }
 
+/// One change of every kind, each field away from its default (names and the texture are not
+/// carried, so they stay at theirs), negative where allowed.
+inline std::vector<SceneChange> sampleChanges() {
+    CameraChange camera;
+    camera.camera.position = {0.5f, -2.25f, 7.0f};
+    camera.camera.lookAt = {-1.0f, 0.125f, -3.5f};
+    camera.camera.up = {0.0f, 0.0f, -1.0f};
+    camera.camera.fovYDeg = 61.5f;
+
+    TransformChange transform;
+    transform.mesh = 7;
+    transform.transform.translate = {1.5f, -2.0f, 1e-7f};
+    transform.transform.rotateDeg = {-90.0f, 45.0f, 370.0f};
+    transform.transform.scale = {2.0f, -0.5f, 1e6f};
+
+    PointLightChange point;
+    point.light = 3;
+    point.value.position = {-4.0f, 5.5f, 0.25f};
+    point.value.intensity = {100.0f, 0.0f, 3.75f};
+    point.value.on = false;
+
+    QuadLightChange quad;
+    quad.light = 0xFFFFFFFFu;  // indices are the scene's business, not the protocol's
+    quad.value.corner = {-0.25f, 1.98f, -0.25f};
+    quad.value.edge1 = {0.5f, 0.0f, 0.0f};
+    quad.value.edge2 = {0.0f, 0.0f, 0.5f};
+    quad.value.radiance = {17.0f, 12.0f, 4.0f};
+    quad.value.on = false;
+
+    MaterialChange material;
+    material.material = 12;
+    material.value.diffuse = {0.1f, 0.2f, 0.3f};
+    material.value.specular = {0.4f, 0.5f, 0.6f};
+    material.value.phongExponent = 250.0f;
+    material.value.reflection = Reflection::Glossy;
+    material.value.glass = true;
+    material.value.ior = 1.33f;
+    material.value.transmittance = {0.9f, 0.8f, 0.7f};
+    material.value.emission = {0.0f, 2.5f, 1.0f};
+
+    MaterialChange mirror;
+    mirror.material = 1;
+    mirror.value.reflection = Reflection::Mirror;
+    mirror.value.specular = {1.0f, 1.0f, 1.0f};
+
+    return {camera, transform, point, quad, material, mirror};
+}
+
+inline SceneUpdate sampleSceneUpdate() {
+    return {sampleChanges()};
+}
+
 inline SceneData sampleSceneData() {
     SceneData m;
     m.bundle.sceneName = "cornell.json";
@@ -51,6 +103,7 @@ inline SceneData sampleSceneData() {
     m.camera.lookAt = {-1.0f, 0.5f, 0.25f};
     m.camera.up = {0.0f, 0.0f, 1.0f};
     m.camera.fovYDeg = 38.5f;
+    m.changes = sampleChanges();
     return m;
 }
 
@@ -93,9 +146,9 @@ inline Error sampleError() {
 }
 
 inline std::vector<Message> sampleMessages() {
-    return {sampleHello(),      sampleWelcome(),    sampleSceneData(),
-            sampleSceneReady(), sampleTileAssign(), sampleTileResult(),
-            Heartbeat{},        Shutdown{},         sampleError()};
+    return {sampleHello(),      sampleWelcome(),    sampleSceneData(), sampleSceneReady(),
+            sampleTileAssign(), sampleTileResult(), Heartbeat{},       Shutdown{},
+            sampleError(),      sampleSceneUpdate()};
 }
 
 }  // namespace igi::proto::test

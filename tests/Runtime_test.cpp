@@ -100,9 +100,11 @@ TEST(Runtime, AClientKilledMidFrameLosesNothing) {
 
 TEST(Runtime, AClientJoiningMidSessionGetsWorkInTheNextFrames) {
     const fs::path dir = scratchDir("join");
-    auto args = sceneArgs(40);
-    args.insert(args.end(), {"--local-clients", "1", "--output", (dir / "joined.exr").string(),
-                             "--stats-json", (dir / "stats.json").string()});
+    // Until stopped: however slow the machine, the session outlives the join.
+    auto args = sceneArgs(0);
+    args.insert(args.end(),
+                {"--local-clients", "1", "--output", (dir / "joined.exr").string(), "--stats-json",
+                 (dir / "stats.json").string(), "--control", "127.0.0.1:0"});
     const fs::path log = dir / "master.log";
     const pid_t master = spawnProcess(masterCommand(args), log);
     ASSERT_GT(master, 0);
@@ -110,7 +112,12 @@ TEST(Runtime, AClientJoiningMidSessionGetsWorkInTheNextFrames) {
         waitForLine(log, std::regex(R"(listening on 127\.0\.0\.1:(\d+))"), master);
     ASSERT_FALSE(listening.empty()) << readFile(log);
     const std::string port = listening[1].str();
+    const auto control =
+        waitForLine(log, std::regex(R"(control commands on 127\.0\.0\.1:(\d+))"), master);
+    ASSERT_FALSE(control.empty()) << readFile(log);
+    const std::string controlPort = control[1].str();
     ASSERT_FALSE(waitForLine(log, std::regex(R"(frame +3:)"), master).empty()) << readFile(log);
+
     const pid_t joiner = spawnProcess(
         {(binDir() / "igi-client").string(), "--connect", "127.0.0.1:" + port, "--threads", "1"},
         dir / "joiner.log");
@@ -120,12 +127,18 @@ TEST(Runtime, AClientJoiningMidSessionGetsWorkInTheNextFrames) {
                                 << readFile(log) << readFile(dir / "joiner.log");
     // The last frame finished before the joiner was ready.
     const std::string text = readFile(log);
-    const std::size_t readyAt = text.find("client 2 (");
-    std::uint32_t lastFrame = 0;
-    const std::string before = text.substr(0, readyAt);
+    const std::string before = text.substr(0, text.find("client 2 ("));
     const std::regex frameLine(R"(frame +(\d+):)");
+    std::uint32_t lastFrame = 0;
     for (std::sregex_iterator it(before.begin(), before.end(), frameLine), end; it != end; ++it)
         lastFrame = std::uint32_t(std::stoul((*it)[1].str()));
+    // Let a few more frames go by, then stop the session.
+    const std::regex later("frame +" + std::to_string(lastFrame + 6) + ":");
+    ASSERT_FALSE(waitForLine(log, later, master).empty()) << readFile(log);
+    const ProcessResult stop = runProcess(
+        {(binDir() / "igi-ctl").string(), "--connect", "127.0.0.1:" + controlPort, "stop"},
+        dir / "ctl.log");
+    ASSERT_EQ(stop.exitCode, 0) << stop.output;
     ASSERT_EQ(waitProcess(master, 300), 0) << readFile(log);
     EXPECT_EQ(waitProcess(joiner, 30), 0) << readFile(dir / "joiner.log");
 

@@ -13,11 +13,13 @@
 #include <nlohmann/json.hpp>
 
 #include "EmbreeDevice.h"
+#include "SceneGeometry.h"
 #include "ShadowSegments.h"
 #include "TileRenderer.h"
 #include "TraceableScene.h"
 #include "render/Tile.h"
 #include "scene/SceneLoader.h"
+#include "scene/SceneState.h"
 #include "util/ThreadPool.h"
 
 namespace {
@@ -109,7 +111,8 @@ int main(int argc, char** argv) {
         if (height > 0) scene.image.height = height;
         igi::ThreadPool pool(threads > 0 ? threads : igi::ThreadPool::defaultThreads());
         igi::EmbreeDevice device;
-        igi::TraceableScene traceable(device, scene);
+        igi::SceneGeometry geometry(device, scene);
+        igi::TraceableScene traceable(geometry);
 
         const auto segs = igi::randomShadowSegments(traceable, segments, 12345);
         std::size_t blocked = 0;
@@ -117,7 +120,8 @@ int main(int argc, char** argv) {
         const double raw1 = occluded1(traceable.embreeScene(), segs, pool, blocked);
         const double raw8 = occluded8(traceable.embreeScene(), segs, pool);
 
-        igi::TileRenderer renderer(traceable, scene, scene.render, scene.camera, scene.image);
+        igi::TileRenderer renderer(traceable, igi::SceneState::of(scene), scene.render,
+                                   scene.image);
         const auto& s = scene.render;
         const auto tiles = igi::makeTiles(scene.image.width, scene.image.height, s.interleaveX,
                                           s.interleaveY, s.tileSize);

@@ -29,6 +29,8 @@ struct Material {
     glm::vec3 transmittance{1.0f};  ///< tint of light refracted through glass
     glm::vec3 emission{0.0f};       ///< Ke: radiance emitted on the front (counter-clockwise) side
 
+    bool operator==(const Material&) const = default;
+
     bool isEmissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
     /// Mirrors and glass: surfaces on which no diffuse VPL is stored and at which caustic
     /// photons are aimed.

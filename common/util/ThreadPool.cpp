@@ -33,6 +33,12 @@ void ThreadPool::submit(std::function<void()> task) {
 void ThreadPool::clearPending() {
     std::lock_guard lock(mutex_);
     tasks_.clear();
+    if (running_ == 0) idle_.notify_all();
+}
+
+void ThreadPool::waitIdle() {
+    std::unique_lock lock(mutex_);
+    idle_.wait(lock, [this] { return tasks_.empty() && running_ == 0; });
 }
 
 void ThreadPool::run() {
@@ -44,8 +50,11 @@ void ThreadPool::run() {
             if (tasks_.empty()) return;  // stopping, and the queue is drained
             task = std::move(tasks_.front());
             tasks_.pop_front();
+            ++running_;
         }
         task();
+        std::lock_guard lock(mutex_);
+        if (--running_ == 0 && tasks_.empty()) idle_.notify_all();
     }
 }
 

@@ -24,6 +24,9 @@ class ThreadPool {
     /// Drops the tasks that have not started (work that is no longer wanted, at shutdown).
     void clearPending();
 
+    /// Waits until no task is queued or running.
+    void waitIdle();
+
     /// Runs f(i) for every i in [0, count) on the workers and the calling thread; returns when
     /// all are done. The caller works too, so this never waits on a busy queue.
     void parallelFor(std::size_t count, const std::function<void(std::size_t)>& f);
@@ -39,6 +42,8 @@ class ThreadPool {
     std::mutex mutex_;
     std::condition_variable wake_;
     std::deque<std::function<void()>> tasks_;
+    std::size_t running_ = 0;
+    std::condition_variable idle_;
     bool stopping_ = false;
     std::vector<std::thread> workers_;
 };

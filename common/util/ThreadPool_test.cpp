@@ -38,3 +38,22 @@ TEST(ThreadPool, SubmittedTasksRunBeforeDestruction) {
 
 }  // namespace
 }  // namespace igi
+
+namespace igi {
+namespace {
+
+TEST(ThreadPool, WaitIdleReturnsOnceEverythingQueuedHasRun) {
+    ThreadPool pool(2);
+    std::atomic<int> ran{0};
+    for (int i = 0; i < 20; ++i)
+        pool.submit([&] {
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+            ran++;
+        });
+    pool.waitIdle();
+    EXPECT_EQ(ran.load(), 20);
+    pool.waitIdle();  // idle already: returns at once
+}
+
+}  // namespace
+}  // namespace igi

@@ -1,0 +1,30 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "SceneGeometry.h"
+#include "TileRenderer.h"
+#include "TraceableScene.h"
+#include "scene/SceneState.h"
+
+namespace igi {
+
+/// One epoch of a scene on a client: its state and everything rendering needs that depends on
+/// it (instances, materials, lights, light sets, camera). Tiles hold the version of their own
+/// epoch, so a newer version can arrive while older tiles finish: a frame never mixes epochs.
+struct SceneVersion {
+    SceneVersion(std::uint32_t epoch, const SceneGeometry& geometry, SceneState state,
+                 const RenderSettings& settings, const ImageSettings& image)
+        : epoch(epoch),
+          state(std::move(state)),
+          traceable(geometry, this->state),
+          renderer(traceable, this->state, settings, image) {}
+
+    std::uint32_t epoch;
+    SceneState state;
+    TraceableScene traceable;
+    TileRenderer renderer;
+};
+
+}  // namespace igi

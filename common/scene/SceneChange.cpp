@@ -1,0 +1,73 @@
+#include "scene/SceneChange.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace igi {
+namespace {
+
+template <typename T>
+void checkIndex(std::uint32_t index, const std::vector<T>& items, const char* what) {
+    if (index >= items.size())
+        throw std::invalid_argument(std::string("a change to ") + what + " " +
+                                    std::to_string(index) + " of a scene with " +
+                                    std::to_string(items.size()));
+}
+
+void apply(SceneState& s, const SceneChange& change) {
+    std::visit(
+        [&](const auto& c) {
+            using C = std::decay_t<decltype(c)>;
+            if constexpr (std::is_same_v<C, CameraChange>) {
+                s.camera = c.camera;
+            } else if constexpr (std::is_same_v<C, TransformChange>) {
+                checkIndex(c.mesh, s.transforms, "mesh");
+                s.transforms[c.mesh] = c.transform;
+            } else if constexpr (std::is_same_v<C, PointLightChange>) {
+                checkIndex(c.light, s.pointLights, "point light");
+                PointLight value = c.value;
+                value.name = s.pointLights[c.light].name;
+                s.pointLights[c.light] = value;
+            } else if constexpr (std::is_same_v<C, QuadLightChange>) {
+                checkIndex(c.light, s.quadLights, "quad light");
+                QuadLight value = c.value;
+                value.name = s.quadLights[c.light].name;
+                s.quadLights[c.light] = value;
+            } else {
+                checkIndex(c.material, s.materials, "material");
+                Material value = c.value;
+                value.name = s.materials[c.material].name;
+                value.diffuseTexture = s.materials[c.material].diffuseTexture;
+                s.materials[c.material] = value;
+            }
+        },
+        change);
+}
+
+}  // namespace
+
+void applyChanges(SceneState& state, const std::vector<SceneChange>& changes) {
+    SceneState next = state;  // all or nothing
+    for (const SceneChange& c : changes) apply(next, c);
+    state = std::move(next);
+}
+
+std::vector<SceneChange> diffStates(const SceneState& from, const SceneState& to) {
+    std::vector<SceneChange> changes;
+    if (!(from.camera == to.camera)) changes.push_back(CameraChange{to.camera});
+    for (std::uint32_t i = 0; i < to.transforms.size() && i < from.transforms.size(); ++i)
+        if (!(from.transforms[i] == to.transforms[i]))
+            changes.push_back(TransformChange{i, to.transforms[i]});
+    for (std::uint32_t i = 0; i < to.pointLights.size() && i < from.pointLights.size(); ++i)
+        if (!(from.pointLights[i] == to.pointLights[i]))
+            changes.push_back(PointLightChange{i, to.pointLights[i]});
+    for (std::uint32_t i = 0; i < to.quadLights.size() && i < from.quadLights.size(); ++i)
+        if (!(from.quadLights[i] == to.quadLights[i]))
+            changes.push_back(QuadLightChange{i, to.quadLights[i]});
+    for (std::uint32_t i = 0; i < to.materials.size() && i < from.materials.size(); ++i)
+        if (!(from.materials[i] == to.materials[i]))
+            changes.push_back(MaterialChange{i, to.materials[i]});
+    return changes;
+}
+
+}  // namespace igi

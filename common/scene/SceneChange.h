@@ -1,0 +1,49 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "scene/SceneState.h"
+
+namespace igi {
+
+/// One change to a scene's state, by index (the master resolves names). A scene update is an
+/// ordered list of them; applying it to the state of epoch e gives the state of epoch e + 1.
+struct CameraChange {
+    Camera camera;
+    bool operator==(const CameraChange&) const = default;
+};
+struct TransformChange {
+    std::uint32_t mesh = 0;
+    Transform transform;
+    bool operator==(const TransformChange&) const = default;
+};
+struct PointLightChange {
+    std::uint32_t light = 0;
+    PointLight value;  ///< position, intensity, on (the name is not changed)
+    bool operator==(const PointLightChange&) const = default;
+};
+struct QuadLightChange {
+    std::uint32_t light = 0;
+    QuadLight value;  ///< corner, edges, radiance, on (the name is not changed)
+    bool operator==(const QuadLightChange&) const = default;
+};
+struct MaterialChange {
+    std::uint32_t material = 0;
+    Material value;  ///< every field but the name and the texture
+    bool operator==(const MaterialChange&) const = default;
+};
+
+using SceneChange =
+    std::variant<CameraChange, TransformChange, PointLightChange, QuadLightChange, MaterialChange>;
+
+/// Applies changes in order. Throws std::invalid_argument naming the first change whose index
+/// is out of range (the state is then unchanged).
+void applyChanges(SceneState& state, const std::vector<SceneChange>& changes);
+
+/// The changes that turn `from` into `to` (states of the same scene): only what differs.
+std::vector<SceneChange> diffStates(const SceneState& from, const SceneState& to);
+
+}  // namespace igi

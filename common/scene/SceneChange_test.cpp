@@ -1,0 +1,53 @@
+#include "scene/SceneChange.h"
+
+#include <gtest/gtest.h>
+
+namespace igi {
+namespace {
+
+SceneState twoObjects() {
+    SceneState s;
+    s.transforms = {Transform{}, Transform{}};
+    s.materials = {Material{}, Material{}};
+    s.materials[1].name = "red";
+    s.pointLights = {PointLight{"lamp", glm::vec3(0, 2, 0), glm::vec3(1), true}};
+    s.quadLights = {QuadLight{"panel", glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 0, 1),
+                              glm::vec3(5), true}};
+    return s;
+}
+
+TEST(SceneChange, DiffThenApplyReproducesTheTarget) {
+    const SceneState from = twoObjects();
+    SceneState to = from;
+    to.camera.position = glm::vec3(1, 2, 3);
+    to.transforms[1].translate = glm::vec3(0.5f, 0, 0);
+    to.materials[1].diffuse = glm::vec3(0.9f, 0.1f, 0.1f);
+    to.pointLights[0].on = false;
+    to.quadLights[0].radiance = glm::vec3(2);
+    const auto changes = diffStates(from, to);
+    EXPECT_EQ(changes.size(), 5u);
+    SceneState s = from;
+    applyChanges(s, changes);
+    EXPECT_EQ(s, to);
+    EXPECT_TRUE(diffStates(to, to).empty());
+}
+
+TEST(SceneChange, NamesAndTexturesStayAndBadIndicesChangeNothing) {
+    SceneState s = twoObjects();
+    s.materials[1].diffuseTexture = 3;
+    Material m;
+    m.name = "renamed?";
+    m.diffuse = glm::vec3(0.2f);
+    applyChanges(s, {MaterialChange{1, m}});
+    EXPECT_EQ(s.materials[1].name, "red");
+    EXPECT_EQ(s.materials[1].diffuseTexture, 3);
+    EXPECT_EQ(s.materials[1].diffuse, glm::vec3(0.2f));
+
+    const SceneState before = s;
+    EXPECT_THROW(applyChanges(s, {CameraChange{Camera{}}, TransformChange{7, Transform{}}}),
+                 std::invalid_argument);
+    EXPECT_EQ(s, before);  // the camera change before the bad one did not stick
+}
+
+}  // namespace
+}  // namespace igi

@@ -1,0 +1,32 @@
+#pragma once
+
+#include <vector>
+
+#include "scene/Camera.h"
+#include "scene/Light.h"
+#include "scene/Material.h"
+#include "scene/Scene.h"
+#include "scene/Transform.h"
+
+namespace igi {
+
+/// Everything about a scene that may change while it renders: the camera, where each object
+/// is, the lights and the materials. Geometry and textures stay as loaded. The master keeps the
+/// current state; each change makes a new epoch, and clients keep one state per epoch they
+/// still have tiles for.
+struct SceneState {
+    Camera camera;
+    std::vector<Transform> transforms;  ///< one per mesh, in Scene::meshes order
+    std::vector<Material> materials;    ///< as Scene::materials
+    std::vector<PointLight> pointLights;
+    std::vector<QuadLight> quadLights;
+
+    /// The state a freshly loaded scene is in.
+    static SceneState of(const Scene& scene);
+    /// Writes this state into a scene of the same shape (same counts).
+    void applyTo(Scene& scene) const;
+
+    bool operator==(const SceneState&) const = default;
+};
+
+}  // namespace igi

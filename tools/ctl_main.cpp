@@ -1,0 +1,154 @@
+// igi-ctl: sends one control command to a running igi-master (--control HOST:PORT) and prints
+// its reply. Commands and their properties: docs/ANIMATION.md.
+#include <iostream>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+#include <boost/asio/connect.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/read_until.hpp>
+#include <boost/asio/streambuf.hpp>
+#include <boost/asio/write.hpp>
+#include <nlohmann/json.hpp>
+
+#include "util/HostPort.h"
+
+namespace {
+
+// One property of a command: the flag, the JSON key, and how many numbers it takes (0: a word).
+struct Property {
+    const char* flag;
+    const char* key;
+    int numbers;
+};
+
+// A subcommand that changes something: its properties become keys of the JSON command.
+struct ChangeCommand {
+    CLI::App* app = nullptr;
+    std::string name;  // object, light or material name (empty for the camera)
+    std::vector<std::pair<Property, std::vector<double>>> numeric;
+    std::vector<std::pair<Property, std::string>> words;
+};
+
+// On the heap: CLI11 keeps pointers to the members, which must not move.
+std::unique_ptr<ChangeCommand> addChangeCommand(CLI::App& app, const char* command,
+                                                const char* help, bool named,
+                                                const std::vector<Property>& properties) {
+    auto owned = std::make_unique<ChangeCommand>();
+    ChangeCommand& c = *owned;
+    c.app = app.add_subcommand(command, help);
+    if (named) c.app->add_option("name", c.name, "its name in the scene file")->required();
+    c.numeric.reserve(properties.size());
+    c.words.reserve(properties.size());
+    for (const Property& p : properties) {
+        if (p.numbers == 0) {
+            c.words.push_back({p, ""});
+            c.app->add_option(p.flag, c.words.back().second, p.key);
+        } else {
+            c.numeric.push_back({p, {}});
+            c.app->add_option(p.flag, c.numeric.back().second, p.key)->expected(1, p.numbers);
+        }
+    }
+    return owned;
+}
+
+nlohmann::json toJson(const ChangeCommand& c, const char* cmd) {
+    nlohmann::json j{{"cmd", cmd}};
+    if (!c.name.empty()) j["name"] = c.name;
+    for (const auto& [p, values] : c.numeric) {
+        if (values.empty()) continue;
+        if (values.size() == 1)
+            j[p.key] = values[0];
+        else
+            j[p.key] = values;
+    }
+    for (const auto& [p, word] : c.words) {
+        if (word.empty()) continue;
+        if (word == "true" || word == "false")
+            j[p.key] = word == "true";
+        else
+            j[p.key] = word;
+    }
+    return j;
+}
+
+std::string exchange(const igi::HostPort& master, const std::string& line) {
+    boost::asio::io_context io;
+    boost::asio::ip::tcp::resolver resolver(io);
+    boost::asio::ip::tcp::socket socket(io);
+    boost::asio::connect(socket, resolver.resolve(master.host, std::to_string(master.port)));
+    boost::asio::write(socket, boost::asio::buffer(line + "\n"));
+    boost::asio::streambuf buffer;
+    boost::asio::read_until(socket, buffer, '\n');
+    std::string reply(boost::asio::buffers_begin(buffer.data()),
+                      boost::asio::buffers_end(buffer.data()));
+    return reply.substr(0, reply.find('\n'));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"igi-ctl: controls a running igi-master (started with --control HOST:PORT)"};
+    std::string connect = "127.0.0.1:7879";
+    app.add_option("--connect", connect, "the master's control HOST:PORT")->capture_default_str();
+    app.require_subcommand(1);
+
+    auto camera = addChangeCommand(app, "camera", "moves the camera", false,
+                                   {{"--position", "position", 3},
+                                    {"--look-at", "look_at", 3},
+                                    {"--up", "up", 3},
+                                    {"--fov-y", "fov_y", 1}});
+    auto object =
+        addChangeCommand(app, "object", "moves an object (a mesh of the scene file)", true,
+                         {{"--translate", "translate", 3},
+                          {"--rotate-deg", "rotate_deg", 3},
+                          {"--scale", "scale", 3}});
+    auto light = addChangeCommand(app, "light", "changes a light", true,
+                                  {{"--position", "position", 3},
+                                   {"--intensity", "intensity", 3},
+                                   {"--corner", "corner", 3},
+                                   {"--edge1", "edge1", 3},
+                                   {"--edge2", "edge2", 3},
+                                   {"--radiance", "radiance", 3},
+                                   {"--on", "on", 0}});
+    auto material =
+        addChangeCommand(app, "material", "changes a material (every one of that name)", true,
+                         {{"--diffuse", "diffuse", 3},
+                          {"--specular", "specular", 3},
+                          {"--phong-exponent", "phong_exponent", 1},
+                          {"--ior", "ior", 1},
+                          {"--transmittance", "transmittance", 3},
+                          {"--emission", "emission", 3},
+                          {"--type", "type", 0}});
+    auto* status =
+        app.add_subcommand("status", "frames done, epoch, accumulated frames, clients, fps");
+    std::string snapshotPath;
+    auto* snapshot =
+        app.add_subcommand("snapshot", "writes the next frame to a file (.png or .exr)");
+    snapshot->add_option("path", snapshotPath)->required();
+    auto* stop = app.add_subcommand("stop", "ends the session (the master writes its outputs)");
+    std::string raw;
+    auto* send = app.add_subcommand("send", "sends a JSON command as it is");
+    send->add_option("json", raw)->required();
+    CLI11_PARSE(app, argc, argv);
+
+    nlohmann::json command;
+    if (*camera->app) command = toJson(*camera, "camera");
+    if (*object->app) command = toJson(*object, "object");
+    if (*light->app) command = toJson(*light, "light");
+    if (*material->app) command = toJson(*material, "material");
+    if (*status) command = {{"cmd", "status"}};
+    if (*snapshot) command = {{"cmd", "snapshot"}, {"path", snapshotPath}};
+    if (*stop) command = {{"cmd", "stop"}};
+    try {
+        const std::string line = *send ? raw : command.dump();
+        const std::string reply = exchange(igi::parseHostPort(connect, "--connect"), line);
+        std::cout << reply << '\n';
+        const auto parsed = nlohmann::json::parse(reply, nullptr, false);
+        return parsed.is_object() && parsed.value("ok", false) ? 0 : 1;
+    } catch (const std::exception& e) {
+        std::cerr << "igi-ctl: " << e.what() << '\n';
+        return 2;
+    }
+}
