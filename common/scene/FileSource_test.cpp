@@ -17,7 +17,7 @@ TEST(ResolveRelative, JoinsToTheReferencingFilesFolder) {
 }
 
 TEST(DiskFileSource, RecordsEveryFileReadKeyedAsRequested) {
-    DiskFileSource disk(test::testdataDir() / "gltf");
+    DiskFileSource disk(test::testdataDir() / "gltf", test::trusted());
     EXPECT_TRUE(disk.exists("../minimal/box.mtl"));
     EXPECT_FALSE(disk.exists("../minimal"));  // a folder is not a file
     const std::string mtl = disk.read("../minimal/box.mtl");

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -14,6 +15,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/matrix.hpp>
 
+#include "scene/GltfPrescan.h"
 #include "scene/MtlMaterials.h"
 #include "scene/SceneError.h"
 #include "scene/TextureLoader.h"
@@ -24,12 +26,17 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxNodeDepth = 256;
+// glTF itself nests about 8 levels; tinygltf copies "extras" recursively, so a deeper nest
+// could exhaust the stack.
+constexpr std::size_t kMaxGltfJsonDepth = 128;
 
 // ---- Reading through the FileSource -------------------------------------------------------
 
 struct FsContext {
     FileSource* files;
     std::string gltfPath;
+    Budget* expanded;     // bytes of buffers and images loaded so far
+    std::string refusal;  // why a file was refused, reported instead of tinygltf's message
     std::string resolve(const std::string& uri) const { return resolveRelative(gltfPath, uri); }
 };
 
@@ -48,12 +55,19 @@ std::string expandPath(const std::string& uri, void*) {
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& uri,
                    void* user) {
-    const auto* ctx = static_cast<FsContext*>(user);
+    auto* ctx = static_cast<FsContext*>(user);
     try {
         const std::string bytes = ctx->files->read(ctx->resolve(uri));
+        // Several buffers or images may name one file: each gets its own copy.
+        if (!ctx->expanded->fits(bytes.size())) {
+            throw SceneError::inFile(ctx->resolve(uri), ctx->expanded->exceeded(bytes.size()));
+        }
+        ctx->expanded->add(bytes.size());
         out->assign(bytes.begin(), bytes.end());
         return true;
     } catch (const std::exception& e) {
+        // Never let an exception cross tinygltf's frames.
+        if (ctx->refusal.empty()) ctx->refusal = e.what();
         if (err) *err += e.what();
         return false;
     }
@@ -74,20 +88,107 @@ bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::stri
     return true;
 }
 
-tinygltf::Model parseGltf(const std::string& path, FileSource& files) {
+void checkUri(const std::string& path, const std::string& uri, const std::string& where,
+              FileSource& files) {
+    try {
+        files.checkPath(resolveRelative(path, decodeUri(uri)));
+    } catch (const SceneError& e) {
+        throw SceneError::atPath(path, where, e.message());
+    }
+}
+
+void charge(Budget& budget, std::uint64_t bytes, const std::string& path,
+            const std::string& where) {
+    if (!budget.fits(bytes)) throw SceneError::atPath(path, where, budget.exceeded(bytes));
+    budget.add(bytes);
+}
+
+// A buffer's data is exactly its byteLength once tinygltf has loaded it (it checks), so the
+// JSON alone tells whether a view lies inside.
+void checkImageView(const GltfPrescan& scan, long long viewIndex, const std::string& path,
+                    const std::string& where) {
+    if (viewIndex >= static_cast<long long>(scan.bufferViews.size()))
+        throw SceneError::atPath(path, where, "buffer view does not exist");
+    const GltfPrescan::BufferView& view = scan.bufferViews[viewIndex];
+    if (view.buffer < 0 || view.buffer >= static_cast<long long>(scan.buffers.size()))
+        throw SceneError::atPath(path, where, "its buffer view's buffer does not exist");
+    const std::uint64_t size = scan.buffers[view.buffer].byteLength;
+    if (view.byteOffset >= size || view.byteLength > size - view.byteOffset ||
+        view.byteLength > static_cast<std::uint64_t>(std::numeric_limits<int>::max())) {
+        throw SceneError::atPath(path, where, "its buffer view reaches past the end of its buffer");
+    }
+}
+
+// Refuses, from the JSON alone, a file whose parse would allocate beyond the limits or that
+// names files outside the scene's folder; charges `expanded` with the bytes tinygltf will
+// copy out of the file itself (a GLB's binary chunk, buffer views holding images).
+void checkBeforeParsing(const std::string& path, const std::string& json, SceneAssets& assets,
+                        Budget& expanded) {
+    const SceneLimits& limits = assets.limits();
+    const GltfPrescan scan =
+        prescanGltfJson(json, path, limits.maxGltfJsonValues, kMaxGltfJsonDepth);
+    if (scan.jsonValues > limits.maxGltfJsonValues) {
+        throw SceneError::inFile(path, "more than " + std::to_string(limits.maxGltfJsonValues) +
+                                           " JSON values, over the limit per glTF file");
+    }
+    if (scan.depth > kMaxGltfJsonDepth) {
+        throw SceneError::inFile(
+            path, "JSON nested deeper than " + std::to_string(kMaxGltfJsonDepth) + " levels");
+    }
+    if (scan.objects() > limits.maxGltfObjects) {
+        throw SceneError::inFile(path, std::to_string(scan.objects()) +
+                                           " objects (nodes, meshes, primitives, accessors, ...), "
+                                           "over the limit of " +
+                                           std::to_string(limits.maxGltfObjects) +
+                                           " per glTF file");
+    }
+    assets.checkMaterialCount(scan.count("materials"), path);
+    for (std::size_t i = 0; i < scan.buffers.size(); ++i) {
+        const auto& b = scan.buffers[i];
+        const std::string where = "/buffers/" + std::to_string(i);
+        if (b.uri.empty()) {
+            charge(expanded, b.byteLength, path, where);  // a copy of the GLB's binary chunk
+        } else if (!tinygltf::IsDataURI(b.uri)) {
+            checkUri(path, b.uri, where + "/uri", assets.files());
+        }
+    }
+    for (std::size_t i = 0; i < scan.images.size(); ++i) {
+        const auto& image = scan.images[i];
+        const std::string where = "/images/" + std::to_string(i);
+        if (!image.uri.empty() && !tinygltf::IsDataURI(image.uri)) {
+            checkUri(path, image.uri, where + "/uri", assets.files());
+        } else if (image.bufferView >= 0) {
+            // tinygltf 2.7 copies an image's buffer view without checking that it lies inside
+            // its buffer (a read past the end): check it here.
+            checkImageView(scan, image.bufferView, path, where);
+            charge(expanded, scan.bufferViews[image.bufferView].byteLength, path, where);
+        }
+    }
+}
+
+tinygltf::Model parseGltf(const std::string& path, SceneAssets& assets) {
+    FileSource& files = assets.files();
     const std::string bytes = files.read(path);
-    FsContext ctx{&files, path};
+    // tinygltf takes 32-bit sizes.
+    if (bytes.size() > std::numeric_limits<unsigned>::max())
+        throw SceneError::inFile(path, "a glTF file must be smaller than 4 GiB");
+    const bool binary = bytes.rfind("glTF", 0) == 0;
+    Budget expanded(assets.limits().maxTotalBytes, "bytes of buffers and images", "per glTF file");
+    checkBeforeParsing(path, binary ? glbJsonChunk(bytes, path) : bytes, assets, expanded);
+
+    FsContext ctx{&files, path, &expanded, {}};
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &writeWholeFile, &ctx});
     loader.SetImageLoader(&keepEncodedImage, nullptr);
     tinygltf::Model model;
     std::string err, warn;
-    const bool binary = bytes.rfind("glTF", 0) == 0;
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
     const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data,
                                                          static_cast<unsigned>(bytes.size()), "")
                            : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
                                                         static_cast<unsigned>(bytes.size()), "");
+    // Also when tinygltf carried on (it only warns about images it cannot load).
+    if (!ctx.refusal.empty()) throw SceneError::inFile(path, "cannot load glTF: " + ctx.refusal);
     if (!ok) throw SceneError::inFile(path, "cannot load glTF: " + err);
     if (!warn.empty()) spdlog::debug("{}: tinygltf: {}", path, warn);
     return model;
@@ -125,6 +226,7 @@ class GltfMaterials {
 
     // Appends every material of the file; returns the scene index of the first.
     std::uint32_t appendAll() {
+        assets_.checkMaterialCount(model_.materials.size(), path_);
         auto& materials = assets_.scene().materials;
         const auto base = static_cast<std::uint32_t>(materials.size());
         for (std::size_t i = 0; i < model_.materials.size(); ++i) {
@@ -214,8 +316,10 @@ class GltfMaterials {
         auto cached = averages_.find(image);
         if (cached != averages_.end()) return cached->second;
         const auto& bytes = model_.images[image].image;
+        // Only its mean is kept: not counted against the scene's texture pixels.
         const Texture t =
-            decodeTexture(imageNameAndKey(image).first, std::string(bytes.begin(), bytes.end()));
+            decodeTexture(imageNameAndKey(image).first, std::string(bytes.begin(), bytes.end()),
+                          TextureLimits{assets_.limits().maxTexturePixels, nullptr});
         return averages_[image] = t.average;
     }
 
@@ -229,8 +333,9 @@ class GltfMaterials {
 
 class AccessorReader {
   public:
-    AccessorReader(const std::string& path, const tinygltf::Model& model)
-        : path_(path), model_(model) {}
+    /// Accessors may have at most `maxCount` elements (SceneLimits::maxVertices).
+    AccessorReader(const std::string& path, const tinygltf::Model& model, std::uint64_t maxCount)
+        : path_(path), model_(model), maxCount_(maxCount) {}
 
     // count x components floats; integer components must be normalized (e.g. texcoords).
     std::vector<float> floats(int index, int type) const {
@@ -240,8 +345,10 @@ class AccessorReader {
         if (acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !acc.normalized) {
             fail(index, "expected float or normalized integer components");
         }
+        // Checked against the buffer before allocating for the count it claims.
+        const Elements elements = elementsOf(index);
         std::vector<float> out(acc.count * components, 0.0f);
-        forEachElement(index, [&](std::size_t i, const unsigned char* p) {
+        elements.forEach([&](std::size_t i, const unsigned char* p) {
             for (int c = 0; c < components; ++c) out[i * components + c] = component(acc, p, c);
         });
         return out;
@@ -250,8 +357,14 @@ class AccessorReader {
     std::vector<std::uint32_t> indices(int index) const {
         const tinygltf::Accessor& acc = accessor(index);
         if (acc.type != TINYGLTF_TYPE_SCALAR) fail(index, "indices must be scalars");
+        if (acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+            acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+            fail(index, "indices must be unsigned integers");
+        }
+        const Elements elements = elementsOf(index);
         std::vector<std::uint32_t> out(acc.count, 0);
-        forEachElement(index, [&](std::size_t i, const unsigned char* p) {
+        elements.forEach([&](std::size_t i, const unsigned char* p) {
             switch (acc.componentType) {
                 case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
                     out[i] = *p;
@@ -259,11 +372,9 @@ class AccessorReader {
                 case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
                     out[i] = load<std::uint16_t>(p);
                     break;
-                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+                default:
                     out[i] = load<std::uint32_t>(p);
                     break;
-                default:
-                    fail(index, "indices must be unsigned integers");
             }
         });
         return out;
@@ -272,6 +383,19 @@ class AccessorReader {
     std::size_t count(int index) const { return accessor(index).count; }
 
   private:
+    // Where an accessor's elements are in its buffer, checked to lie inside it.
+    struct Elements {
+        const unsigned char* first = nullptr;  // nullptr: no buffer view, all zeros
+        std::size_t stride = 0;
+        std::size_t count = 0;
+
+        template <typename Visit>
+        void forEach(Visit visit) const {
+            if (!first) return;
+            for (std::size_t i = 0; i < count; ++i) visit(i, first + i * stride);
+        }
+    };
+
     template <typename T>
     static T load(const unsigned char* p) {
         T v;
@@ -289,6 +413,11 @@ class AccessorReader {
         }
         const auto& acc = model_.accessors[index];
         if (acc.sparse.isSparse) fail(index, "sparse accessors are not supported");
+        // An accessor without a buffer view is all zeros: only this bounds its count.
+        if (acc.count > maxCount_) {
+            fail(index, "count " + std::to_string(acc.count) + " is over the limit of " +
+                            std::to_string(maxCount_));
+        }
         return acc;
     }
 
@@ -309,12 +438,11 @@ class AccessorReader {
         }
     }
 
-    // Calls visit(i, bytes of element i) after checking that every element lies inside its
-    // buffer view and buffer. An accessor without a buffer view is all zeros (glTF 2.0).
-    template <typename Visit>
-    void forEachElement(int index, Visit visit) const {
+    // Checks that every element lies inside its buffer view and buffer, in arithmetic that a
+    // hostile offset or count near 2^64 cannot wrap around.
+    Elements elementsOf(int index) const {
         const tinygltf::Accessor& acc = accessor(index);
-        if (acc.bufferView < 0 || acc.count == 0) return;
+        if (acc.bufferView < 0 || acc.count == 0) return {};
         if (acc.bufferView >= static_cast<int>(model_.bufferViews.size()))
             fail(index, "buffer view does not exist");
         const tinygltf::BufferView& view = model_.bufferViews[acc.bufferView];
@@ -326,17 +454,22 @@ class AccessorReader {
             tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(acc.componentType)) *
             tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(acc.type));
         if (stride <= 0 || elementSize <= 0) fail(index, "invalid component type or stride");
-        const std::size_t start = view.byteOffset + acc.byteOffset;
-        const std::size_t end =
-            start + static_cast<std::size_t>(stride) * (acc.count - 1) + elementSize;
-        if (end > view.byteOffset + view.byteLength || end > data.size()) {
+        if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+            fail(index, "its buffer view reaches past the end of its buffer");
+        if (acc.byteOffset > view.byteLength)
+            fail(index, "accessor reaches past the end of its buffer");
+        const std::size_t available = view.byteLength - acc.byteOffset;
+        if (static_cast<std::size_t>(elementSize) > available ||
+            acc.count - 1 > (available - elementSize) / static_cast<std::size_t>(stride)) {
             fail(index, "accessor reaches past the end of its buffer");
         }
-        for (std::size_t i = 0; i < acc.count; ++i) visit(i, data.data() + start + i * stride);
+        return {data.data() + view.byteOffset + acc.byteOffset, static_cast<std::size_t>(stride),
+                acc.count};
     }
 
     const std::string& path_;
     const tinygltf::Model& model_;
+    std::uint64_t maxCount_;
 };
 
 // ---- Geometry -----------------------------------------------------------------------------
@@ -381,11 +514,12 @@ class GltfFlattener {
                   SceneAssets& assets, Mesh& mesh, std::vector<PointLight>& lights)
         : path_(path),
           model_(model),
-          accessors_(path, model),
+          accessors_(path, model, assets.limits().maxVertices),
           materialBase_(materialBase),
           assets_(assets),
           mesh_(mesh),
-          lights_(lights) {
+          lights_(lights),
+          visited_(model.nodes.size(), false) {
         for (const auto& m : model.meshes) {
             for (const auto& p : m.primitives) {
                 withNormals_ = withNormals_ || p.attributes.count("NORMAL") > 0;
@@ -425,6 +559,13 @@ class GltfFlattener {
         }
         if (depth > kMaxNodeDepth)
             throw SceneError::atPath(path_, where, "node hierarchy too deep (a cycle?)");
+        // glTF nodes form disjoint trees. A node reached twice would be a cycle, or a graph
+        // whose paths multiply with its depth (2^256 visits for a chain of pairs).
+        if (visited_[index]) {
+            throw SceneError::atPath(path_, where,
+                                     "node is reached twice (glTF nodes must form trees)");
+        }
+        visited_[index] = true;
         const tinygltf::Node& node = model_.nodes[index];
         const glm::dmat4 world = parent * localMatrix(node);
         if (node.mesh >= 0) addMesh(node.mesh, world);
@@ -488,6 +629,10 @@ class GltfFlattener {
         return it == prim.attributes.end() ? -1 : it->second;
     }
 
+    int nonEmpty(int accessor) const {
+        return accessor >= 0 && accessors_.count(accessor) == 0 ? -1 : accessor;
+    }
+
     void addPrimitive(const tinygltf::Primitive& prim, const glm::dmat4& world,
                       const std::string& where) {
         const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
@@ -498,8 +643,18 @@ class GltfFlattener {
         }
         const int posAccessor = attribute(prim, "POSITION");
         if (posAccessor < 0) throw SceneError::atPath(path_, where, "primitive has no POSITION");
+        // An attribute with no elements counts as absent.
+        const int nAcc = nonEmpty(attribute(prim, "NORMAL"));
+        const int tAcc = nonEmpty(attribute(prim, "TEXCOORD_0"));
+        const std::size_t count = accessors_.count(posAccessor);
+        // Compared before reading: neither is read when it claims more than POSITION.
+        if (nAcc >= 0 && accessors_.count(nAcc) != count)
+            throw SceneError::atPath(path_, where, "NORMAL count differs from POSITION");
+        if (tAcc >= 0 && accessors_.count(tAcc) != count)
+            throw SceneError::atPath(path_, where, "TEXCOORD_0 count differs from POSITION");
+        chargeGeometry(prim, mode, count, nAcc < 0, where);
+
         const std::vector<float> pos = accessors_.floats(posAccessor, TINYGLTF_TYPE_VEC3);
-        const std::size_t count = pos.size() / 3;
         for (float v : pos) {
             if (!std::isfinite(v)) throw SceneError::atPath(path_, where, "POSITION is not finite");
         }
@@ -515,16 +670,28 @@ class GltfFlattener {
                 throw SceneError::atPath(path_, where,
                                          "index " + std::to_string(i) + " is out of range");
         }
-        const int nAcc = attribute(prim, "NORMAL");
-        const int tAcc = attribute(prim, "TEXCOORD_0");
         Attributes attr{
             pos, nAcc >= 0 ? accessors_.floats(nAcc, TINYGLTF_TYPE_VEC3) : std::vector<float>(),
             tAcc >= 0 ? accessors_.floats(tAcc, TINYGLTF_TYPE_VEC2) : std::vector<float>()};
-        if (!attr.normals.empty() && attr.normals.size() != pos.size())
-            throw SceneError::atPath(path_, where, "NORMAL count differs from POSITION");
-        if (!attr.uvs.empty() && attr.uvs.size() / 2 != count)
-            throw SceneError::atPath(path_, where, "TEXCOORD_0 count differs from POSITION");
         emit(assembleTriangles(mode, idx), attr, world, materialId(prim.material));
+    }
+
+    // Charges the scene with the primitive's triangles and the vertices emit() will add,
+    // before anything of that size is read or allocated.
+    void chargeGeometry(const tinygltf::Primitive& prim, int mode, std::size_t count,
+                        bool noNormals, const std::string& where) {
+        const std::uint64_t corners = prim.indices >= 0 ? accessors_.count(prim.indices) : count;
+        const std::uint64_t triangles = mode == TINYGLTF_MODE_TRIANGLES ? corners / 3
+                                        : corners >= 2                  ? corners - 2
+                                                                        : 0;
+        // A flat-shaded primitive gets three vertices per triangle.
+        const std::uint64_t vertices = withNormals_ && noNormals ? 3 * triangles : count;
+        Budget& t = assets_.triangles();
+        Budget& v = assets_.vertices();
+        if (!t.fits(triangles)) throw SceneError::atPath(path_, where, t.exceeded(triangles));
+        if (!v.fits(vertices)) throw SceneError::atPath(path_, where, v.exceeded(vertices));
+        t.add(triangles);
+        v.add(vertices);
     }
 
     struct Attributes {
@@ -594,6 +761,7 @@ class GltfFlattener {
     SceneAssets& assets_;
     Mesh& mesh_;
     std::vector<PointLight>& lights_;
+    std::vector<bool> visited_;
     bool withNormals_ = false;
     bool withUvs_ = false;
     std::optional<std::uint32_t> defaultId_;
@@ -603,7 +771,7 @@ class GltfFlattener {
 
 void loadGltf(const std::string& path, SceneAssets& assets, Mesh& mesh,
               std::vector<PointLight>& lights) {
-    const tinygltf::Model model = parseGltf(path, assets.files());
+    const tinygltf::Model model = parseGltf(path, assets);
     const std::uint32_t base = GltfMaterials(path, model, assets).appendAll();
     GltfFlattener(path, model, base, assets, mesh, lights).run();
     spdlog::debug("{}: {} triangles, {} materials, {} lights", path, mesh.triangles.size(),

@@ -36,7 +36,15 @@ QuadLight parseQuadLight(const JsonNode& node, std::string name) {
 
 }  // namespace
 
-void parseLights(const JsonNode& node, Scene& scene) {
+void parseLights(const JsonNode& node, Scene& scene, std::size_t maxLights) {
+    // glTF files may have brought lights already.
+    const std::size_t have = scene.pointLights.size() + scene.quadLights.size();
+    const std::size_t count = node.value().is_array() ? node.value().size() : 0;
+    if (count > maxLights || have > maxLights - count) {
+        node.fail(std::to_string(count) + " lights would exceed the limit of " +
+                  std::to_string(maxLights) + " per scene (" + std::to_string(have) +
+                  " from glTF files)");
+    }
     const auto lights = node.elements();
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const JsonNode& l = lights[i];

@@ -1,6 +1,9 @@
+#include <map>
+
 #include <spdlog/spdlog.h>
 
 #include "scene/MtlMaterials.h"
+#include "scene/SceneError.h"
 #include "scene/SceneSections.h"
 
 namespace igi {
@@ -33,7 +36,13 @@ std::optional<int> overrideTexture(const JsonNode& node, SceneAssets& assets) {
     if (!v) return std::nullopt;
     const std::string written = v->string();
     // Relative to the scene file.
-    const std::optional<int> index = assets.textureFile(resolveRelative("", written));
+    const std::string path = resolveRelative("", written);
+    try {
+        assets.files().checkPath(path);
+    } catch (const SceneError& e) {
+        v->fail(e.message());
+    }
+    const std::optional<int> index = assets.textureFile(path);
     if (!index) v->fail("texture '" + written + "' not found");
     return index;
 }
@@ -41,15 +50,18 @@ std::optional<int> overrideTexture(const JsonNode& node, SceneAssets& assets) {
 }  // namespace
 
 void applyMaterialOverrides(const JsonNode& node, SceneAssets& assets) {
+    // By name once: a scene file may override many names of a scene with many materials.
+    std::multimap<std::string, std::size_t> byName;
+    auto& materials = assets.scene().materials;
+    for (std::size_t i = 0; i < materials.size(); ++i) byName.emplace(materials[i].name, i);
     for (const auto& [name, value] : node.members()) {
         value.checkKeys({"type", "diffuse", "specular", "phong_exponent", "ior", "transmittance",
                          "emission", "texture"});
-        bool found = false;
-        for (const Material& m : assets.scene().materials) found = found || m.name == name;
-        if (!found) value.fail("no loaded mesh has a material named '" + name + "'");
+        const auto [first, last] = byName.equal_range(name);
+        if (first == last) value.fail("no loaded mesh has a material named '" + name + "'");
         const std::optional<int> texture = overrideTexture(value, assets);
-        for (Material& m : assets.scene().materials) {
-            if (m.name != name) continue;
+        for (auto it = first; it != last; ++it) {
+            Material& m = materials[it->second];
             apply(value, texture, m);
             conserveEnergy(m, value.file() + ": " + value.path());
         }

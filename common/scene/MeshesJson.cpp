@@ -51,6 +51,11 @@ void loadMesh(const JsonNode& entry, SceneAssets& assets) {
     if (ext != ".obj" && ext != ".gltf" && ext != ".glb") {
         fileNode.fail("unsupported mesh format '" + ext + "' (expected .obj, .gltf or .glb)");
     }
+    try {
+        assets.files().checkPath(mesh.file);
+    } catch (const SceneError& e) {
+        fileNode.fail(e.message());
+    }
     if (!assets.files().exists(mesh.file)) fileNode.fail("file '" + written + "' not found");
 
     if (ext == ".obj") {
@@ -58,6 +63,13 @@ void loadMesh(const JsonNode& entry, SceneAssets& assets) {
     } else {
         std::vector<PointLight> lights;
         loadGltf(mesh.file, assets, mesh, lights);
+        const std::size_t have = assets.scene().pointLights.size();
+        const std::size_t max = assets.limits().maxLights;
+        if (lights.size() > max || have > max - lights.size()) {
+            fileNode.fail("its " + std::to_string(lights.size()) +
+                          " lights would exceed the limit of " + std::to_string(max) +
+                          " lights per scene");
+        }
         const glm::mat4 m = mesh.transform.matrix();
         for (PointLight& l : lights) {
             l.position = glm::vec3(m * glm::vec4(l.position, 1.0f));
@@ -70,6 +82,10 @@ void loadMesh(const JsonNode& entry, SceneAssets& assets) {
 }  // namespace
 
 void loadMeshes(const JsonNode& node, SceneAssets& assets) {
+    if (node.value().is_array() && node.value().size() > assets.limits().maxMeshes) {
+        node.fail(std::to_string(node.value().size()) + " meshes, over the limit of " +
+                  std::to_string(assets.limits().maxMeshes));
+    }
     for (const JsonNode& entry : node.elements()) loadMesh(entry, assets);
 }
 

@@ -68,28 +68,54 @@ std::string slashes(std::string name) {
 
 }  // namespace
 
-FileSourceMtlReader::FileSourceMtlReader(FileSource& files, std::string objPath)
-    : files_(files), objPath_(std::move(objPath)) {}
+FileSourceMtlReader::FileSourceMtlReader(FileSource& files, std::string objPath,
+                                         std::size_t maxMaterials, std::size_t sceneMaterials)
+    : files_(files),
+      objPath_(std::move(objPath)),
+      maxMaterials_(maxMaterials),
+      sceneMaterials_(sceneMaterials) {}
+
+std::string FileSourceMtlReader::problem(const std::string& library) const {
+    auto it = problems_.find(library);
+    return it == problems_.end() ? std::string() : it->second;
+}
 
 bool FileSourceMtlReader::operator()(const std::string& matId,
                                      std::vector<tinyobj::material_t>* materials,
                                      std::map<std::string, int>* matMap, std::string* warn,
                                      std::string* err) {
     try {
-        const auto path = locateFile(files_, resolveRelative(objPath_, slashes(matId)));
+        const std::string resolved = resolveRelative(objPath_, slashes(matId));
+        files_.checkPath(resolved);
+        const auto path = locateFile(files_, resolved);
         if (!path) {
             missing_.push_back(matId);
             return false;
         }
         const std::string& text = texts_[*path] = files_.read(*path);
+        // tinyobjloader allocates 2 kB per material: count them first.
+        const std::size_t count = countNewmtl(text);
+        const std::size_t have = sceneMaterials_ + materials->size();
+        if (count > maxMaterials_ || have > maxMaterials_ - count) {
+            throw SceneError::inFile(*path, std::to_string(count) +
+                                                " more materials would exceed the limit of " +
+                                                std::to_string(maxMaterials_) + " per scene (" +
+                                                std::to_string(have) + " already)");
+        }
         std::istringstream stream(text);
         tinyobj::LoadMtl(matMap, materials, &stream, warn, err);
         materialFiles_.resize(materials->size(), *path);
         libraries_.push_back(*path);
         return true;
-    } catch (const std::exception& e) {
+    } catch (const SceneError& e) {
         // Never let an exception cross tinyobjloader's frames.
         missing_.push_back(matId);
+        problems_[matId] = e.message();
+        if (err) *err += e.what();
+        return false;
+    } catch (const std::exception& e) {
+        missing_.push_back(matId);
+        problems_[matId] = e.what();
         if (err) *err += e.what();
         return false;
     }
@@ -129,6 +155,11 @@ Material materialFromMtl(const tinyobj::material_t& mtl, const std::string& mtlP
     if (!mtl.diffuse_texname.empty()) {
         const std::string name = slashes(mtl.diffuse_texname);
         const std::string path = resolveRelative(mtlPath, name);
+        try {
+            assets.files().checkPath(path);
+        } catch (const SceneError& e) {
+            throw SceneError::atLine(mtlPath, mtlLine(mtlText, mtl.name, "map_Kd"), e.message());
+        }
         std::optional<int> texture;
         try {
             texture = assets.textureFile(path);

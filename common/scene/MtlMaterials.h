@@ -12,15 +12,20 @@
 #include "scene/FileSource.h"
 #include "scene/Material.h"
 #include "scene/SceneAssets.h"
+#include "scene/SceneLimits.h"
 
 namespace igi {
 
 /// Serves `mtllib` statements from a FileSource and remembers, for error messages, which MTL
 /// file each material came from and what it said. It never throws (tinyobjloader calls it);
-/// libraries it cannot read are listed in missing().
+/// libraries it cannot read are listed in missing(), with the reason in problem(). It refuses
+/// a library whose `newmtl` statements would bring the scene's materials (`sceneMaterials`
+/// before this OBJ) past `maxMaterials`.
 class FileSourceMtlReader : public tinyobj::MaterialReader {
   public:
-    FileSourceMtlReader(FileSource& files, std::string objPath);
+    FileSourceMtlReader(FileSource& files, std::string objPath,
+                        std::size_t maxMaterials = SceneLimits{}.maxMaterials,
+                        std::size_t sceneMaterials = 0);
 
     bool operator()(const std::string& matId, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* matMap, std::string* warn,
@@ -28,6 +33,9 @@ class FileSourceMtlReader : public tinyobj::MaterialReader {
 
     /// Library names, as the OBJ wrote them, that could not be read.
     const std::vector<std::string>& missing() const { return missing_; }
+    /// Why a missing library could not be read, when it exists but may not be used ("" when
+    /// it does not exist).
+    std::string problem(const std::string& library) const;
     /// Names of the libraries that were read, relative to the scene file.
     const std::vector<std::string>& libraries() const { return libraries_; }
     /// The MTL file (relative to the scene file) of each material, by index.
@@ -37,7 +45,10 @@ class FileSourceMtlReader : public tinyobj::MaterialReader {
   private:
     FileSource& files_;
     std::string objPath_;
+    std::size_t maxMaterials_;
+    std::size_t sceneMaterials_;
     std::vector<std::string> missing_;
+    std::map<std::string, std::string> problems_;
     std::vector<std::string> libraries_;
     std::vector<std::string> materialFiles_;
     std::map<std::string, std::string> texts_;

@@ -1,5 +1,6 @@
 #include "scene/ObjLoader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <istream>
 #include <streambuf>
@@ -46,10 +47,11 @@ void checkMaterialStatements(const std::string& objPath, const std::string& text
         for (const std::string& name : st.names) {
             if (st.isLibrary) {
                 for (const std::string& missing : reader.missing()) {
-                    if (missing == name) {
-                        throw SceneError::atLine(objPath, st.line,
-                                                 "material library '" + name + "' not found");
-                    }
+                    if (missing != name) continue;
+                    const std::string problem = reader.problem(name);
+                    throw SceneError::atLine(objPath, st.line,
+                                             "material library '" + name + "'" +
+                                                 (problem.empty() ? " not found" : ": " + problem));
                 }
                 continue;
             }
@@ -90,6 +92,33 @@ void checkIndices(const std::string& objPath, const std::string& text, const Par
             }
         }
     }
+}
+
+// Refuses a file that would make tinyobjloader allocate beyond the scene's limits, before it
+// does, and charges its vertices and triangles to the scene.
+void checkObjSize(const std::string& objPath, const std::string& text, SceneAssets& assets) {
+    const ObjStatementCounts counts = countObjStatements(text);
+    if (counts.indexBeyondInt) failAtBadIndex(objPath, text, "a face index is out of range");
+    const SceneLimits& limits = assets.limits();
+    if (counts.mostFaceCorners > limits.maxFaceCorners) {
+        throw SceneError::atLine(objPath, counts.mostFaceCornersLine,
+                                 "face has " + std::to_string(counts.mostFaceCorners) +
+                                     " corners, over the limit of " +
+                                     std::to_string(limits.maxFaceCorners));
+    }
+    if (counts.groups > limits.maxObjGroups) {
+        throw SceneError::inFile(
+            objPath, std::to_string(counts.groups) + " o and g statements, over the limit of " +
+                         std::to_string(limits.maxObjGroups) + " per OBJ file");
+    }
+    // Each attribute has its own array: the longest is what the vertices cost.
+    const std::uint64_t vertices = std::max({counts.positions, counts.normals, counts.texcoords});
+    if (!assets.vertices().fits(vertices))
+        throw SceneError::inFile(objPath, assets.vertices().exceeded(vertices));
+    if (!assets.triangles().fits(counts.triangles))
+        throw SceneError::inFile(objPath, assets.triangles().exceeded(counts.triangles));
+    assets.vertices().add(vertices);
+    assets.triangles().add(counts.triangles);
 }
 
 ParsedObj parseObj(const std::string& objPath, const std::string& text,
@@ -271,7 +300,9 @@ void buildMesh(const std::string& objPath, const ParsedObj& obj, std::uint32_t m
 
 void loadObj(const std::string& objPath, SceneAssets& assets, Mesh& mesh) {
     const std::string text = assets.files().read(objPath);
-    FileSourceMtlReader reader(assets.files(), objPath);
+    checkObjSize(objPath, text, assets);
+    FileSourceMtlReader reader(assets.files(), objPath, assets.limits().maxMaterials,
+                               assets.scene().materials.size());
     const ParsedObj obj = parseObj(objPath, text, reader);
     const std::uint32_t base = appendMaterials(obj, reader, assets);
     buildMesh(objPath, obj, base, assets, mesh);

@@ -1,5 +1,6 @@
 #include "scene/ObjText.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cstring>
@@ -149,6 +150,125 @@ std::optional<BadFaceIndex> findBadFaceIndex(std::string_view objText) {
         return true;
     });
     return found;
+}
+
+namespace {
+
+// Calls visit(lineNumber, line) for each line ended by "\n", "\r\n" or a lone "\r",
+// leading blanks removed.
+template <typename Visit>
+void forEachObjLine(std::string_view text, Visit visit) {
+    // The next '\n' and '\r' at or after pos, each searched for again only once passed, so
+    // that a file with one kind of line end only is still read in linear time.
+    auto find = [&](char c, std::size_t from) {
+        const void* p = std::memchr(text.data() + from, c, text.size() - from);
+        return p ? static_cast<std::size_t>(static_cast<const char*>(p) - text.data())
+                 : text.size();
+    };
+    std::size_t nextNl = find('\n', 0), nextCr = find('\r', 0);
+    int number = 0;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+        if (nextNl < pos) nextNl = find('\n', pos);
+        if (nextCr < pos) nextCr = find('\r', pos);
+        std::size_t end = std::min(nextNl, nextCr);
+        std::string_view line = text.substr(pos, end - pos);
+        while (!line.empty() && (line.front() == ' ' || line.front() == '\t'))
+            line.remove_prefix(1);
+        visit(++number, line);
+        if (end + 1 < text.size() && text[end] == '\r' && text[end + 1] == '\n') ++end;
+        pos = end + 1;
+    }
+}
+
+// The words of an index statement's arguments, and whether one of its numbers is outside the
+// range of an int; one pass, since this runs over every face of a large mesh.
+struct IndexWords {
+    std::size_t words = 0;
+    bool beyondInt = false;
+};
+
+IndexWords scanIndexWords(std::string_view args) {
+    IndexWords out;
+    bool inWord = false;
+    std::size_t digits = 0, longest = 0;
+    for (char c : args) {
+        const bool blank = c == ' ' || c == '\t';
+        if (!blank && !inWord) ++out.words;
+        inWord = !blank;
+        digits = c >= '0' && c <= '9' ? digits + 1 : 0;
+        longest = std::max(longest, digits);
+    }
+    // 2147483647 has 10 digits: only longer runs need a closer look (leading zeros).
+    if (longest < 10) return out;
+    for (std::size_t pos = 0; pos < args.size();) {
+        const std::size_t start = args.find_first_of("0123456789", pos);
+        if (start == std::string_view::npos) break;
+        std::size_t end = args.find_first_not_of("0123456789", start);
+        if (end == std::string_view::npos) end = args.size();
+        long long value = 0;
+        const auto [ptr, ec] = std::from_chars(args.data() + start, args.data() + end, value);
+        if (ec != std::errc() || value > 2147483647LL) out.beyondInt = true;
+        pos = end;
+    }
+    return out;
+}
+
+// tinyobjloader's test for a statement: the keyword, then a space or a tab.
+bool isStatement(std::string_view line, std::string_view keyword) {
+    return line.size() > keyword.size() && line.substr(0, keyword.size()) == keyword &&
+           (line[keyword.size()] == ' ' || line[keyword.size()] == '\t');
+}
+
+}  // namespace
+
+ObjStatementCounts countObjStatements(std::string_view objText) {
+    ObjStatementCounts counts;
+    forEachObjLine(objText, [&](int number, std::string_view line) {
+        if (line.size() < 2) return;
+        switch (line[0]) {
+            case 'v':
+                if (isStatement(line, "v")) ++counts.positions;
+                if (isStatement(line, "vn")) ++counts.normals;
+                if (isStatement(line, "vt")) ++counts.texcoords;
+                return;
+            case 'f':
+                if (isStatement(line, "f")) {
+                    const IndexWords scan = scanIndexWords(line.substr(2));
+                    counts.indexBeyondInt = counts.indexBeyondInt || scan.beyondInt;
+                    const std::size_t corners = scan.words;
+                    if (corners >= 3) counts.triangles += corners - 2;
+                    if (corners > counts.mostFaceCorners) {
+                        counts.mostFaceCorners = corners;
+                        counts.mostFaceCornersLine = number;
+                    }
+                }
+                return;
+            case 'l':
+            case 'p':
+                if (line[1] == ' ' || line[1] == '\t') {
+                    const IndexWords scan = scanIndexWords(line.substr(2));
+                    counts.indexBeyondInt = counts.indexBeyondInt || scan.beyondInt;
+                    counts.triangles += scan.words;
+                }
+                return;
+            case 'o':
+            case 'g':
+                if (line[1] == ' ' || line[1] == '\t') ++counts.groups;
+                return;
+            default:
+                return;
+        }
+    });
+    return counts;
+}
+
+std::size_t countNewmtl(std::string_view mtlText) {
+    std::size_t count = 0;
+    forEachObjLine(mtlText, [&](int, std::string_view line) {
+        if (line.rfind("newmtl", 0) == 0) ++count;
+    });
+    return count;
 }
 
 int mtlLine(std::string_view mtlText, const std::string& material, std::string_view keyword) {

@@ -4,6 +4,7 @@
 // line numbers, so the OBJ loader scans the text itself to name the line of what is wrong.
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -42,6 +43,27 @@ struct BadFaceIndex {
     std::string message;
 };
 std::optional<BadFaceIndex> findBadFaceIndex(std::string_view objText);
+
+/// What parsing an OBJ file will cost, counted before tinyobjloader allocates for it.
+/// Lines end at "\n", "\r\n" or a lone "\r", as for tinyobjloader; counts err high.
+struct ObjStatementCounts {
+    std::uint64_t positions = 0;  ///< v
+    std::uint64_t normals = 0;    ///< vn
+    std::uint64_t texcoords = 0;  ///< vt
+    /// Triangles the faces become (corners - 2 each), plus one per `l` and `p` index (not
+    /// rendered, but tinyobjloader stores them).
+    std::uint64_t triangles = 0;
+    std::uint64_t groups = 0;  ///< o and g
+    std::size_t mostFaceCorners = 0;
+    int mostFaceCornersLine = 0;  ///< the first face with that many
+    /// A face, line or point index beyond an int, which tinyobjloader would wrap around
+    /// (4294967299 reads as 3).
+    bool indexBeyondInt = false;
+};
+ObjStatementCounts countObjStatements(std::string_view objText);
+
+/// The number of `newmtl` statements of an MTL file.
+std::size_t countNewmtl(std::string_view mtlText);
 
 /// The line of `keyword` inside material `material` of an MTL file, or of its `newmtl`
 /// statement when the keyword is not found, or 0.

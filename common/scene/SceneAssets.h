@@ -1,23 +1,27 @@
 #pragma once
 
-// What the loaders of one scene share: the file source, the scene being filled, and the
-// textures already decoded (so that twenty Sponza materials naming one JPEG decode it once).
+// What the loaders of one scene share: the file source, the scene being filled, the textures
+// already decoded (so that twenty Sponza materials naming one JPEG decode it once), and the
+// scene's running totals against its SceneLimits.
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
 
 #include "scene/FileSource.h"
 #include "scene/Scene.h"
+#include "scene/SceneLimits.h"
 
 namespace igi {
 
 class SceneAssets {
   public:
-    SceneAssets(FileSource& files, Scene& scene) : files_(files), scene_(scene) {}
+    SceneAssets(FileSource& files, Scene& scene, const SceneLimits& limits = {});
 
     FileSource& files() { return files_; }
     Scene& scene() { return scene_; }
+    const SceneLimits& limits() const { return limits_; }
 
     /// Index in Scene::textures of the texture file at `path` (relative to the scene file),
     /// found case-insensitively if need be and decoded once; nothing when no such file exists.
@@ -27,11 +31,23 @@ class SceneAssets {
     /// `key`; `name` picks the decoder by its extension.
     int textureBytes(const std::string& key, const std::string& name, const std::string& bytes);
 
+    /// The scene's triangles and vertices so far: a loader checks fits() and add()s before it
+    /// allocates for a file or a primitive.
+    Budget& triangles() { return triangles_; }
+    Budget& vertices() { return vertices_; }
+
+    /// Throws SceneError naming `file` when `count` more materials would exceed the limit.
+    void checkMaterialCount(std::size_t count, const std::string& file) const;
+
   private:
-    int add(const std::string& key, Texture texture);
+    int add(const std::string& key, const std::string& name, const std::string& bytes);
 
     FileSource& files_;
     Scene& scene_;
+    SceneLimits limits_;
+    Budget triangles_;
+    Budget vertices_;
+    Budget texturePixels_;
     std::map<std::string, int> byKey_;
 };
 

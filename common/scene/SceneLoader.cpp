@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -26,12 +24,8 @@ std::string lowerExtension(const fs::path& path) {
     return ext;
 }
 
-std::string readSceneText(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw SceneError::inFile(path.string(), "cannot read scene file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return std::move(text).str();
+std::string readSceneText(const fs::path& path, const SceneLimits& limits) {
+    return readRegularFile(path, limits.maxSceneFileBytes, path.string());
 }
 
 // The scene file a bare OBJ stands for: the object, auto-framed, lit by a headlight when it
@@ -58,17 +52,17 @@ SceneError relativeToUser(const SceneError& e, const fs::path& folder) {
     return SceneError(file, e.line(), e.jsonPath(), e.message());
 }
 
-Scene loadFromDisk(const fs::path& path, SceneBundle& bundle) {
+Scene loadFromDisk(const fs::path& path, SceneBundle& bundle, const SceneLoadOptions& options) {
     const std::string name = path.filename().string();
-    DiskFileSource disk(path.parent_path());
+    DiskFileSource disk(path.parent_path(), options);
     Scene scene;
     const std::string ext = lowerExtension(path);
     if (ext == ".json") {
-        bundle.sceneText = readSceneText(path);
-        scene = parseScene(bundle.sceneText, name, disk);
+        bundle.sceneText = readSceneText(path, options.limits);
+        scene = parseScene(bundle.sceneText, name, disk, options.limits);
     } else if (ext == ".obj") {
         bundle.sceneText = objSceneText(name, false);
-        scene = parseScene(bundle.sceneText, name, disk);
+        scene = parseScene(bundle.sceneText, name, disk, options.limits);
         // The headlight depends on the materials, known only now: add it as parseScene would
         // for the text that says so, and ship that text.
         if (!hasEmitter(scene)) {
@@ -86,11 +80,16 @@ Scene loadFromDisk(const fs::path& path, SceneBundle& bundle) {
 
 }  // namespace
 
-Scene loadSceneFile(const std::filesystem::path& path, SceneBundle* bundle) {
+Scene loadSceneFile(const std::filesystem::path& path, SceneBundle* bundle,
+                    const SceneLoadOptions& options) {
     SceneBundle local;
     SceneBundle& out = bundle ? *bundle : local;
     try {
-        Scene scene = loadFromDisk(path, out);
+        Scene scene = loadFromDisk(path, out, options);
+        // Allowed outside paths may be absolute, which no client accepts: say so here.
+        if (bundle) {
+            for (const auto& [name, bytes] : out.files) checkBundlePath(name);
+        }
         scene.sourcePath = path.string();
         return scene;
     } catch (const SceneError& e) {
@@ -99,9 +98,27 @@ Scene loadSceneFile(const std::filesystem::path& path, SceneBundle* bundle) {
     }
 }
 
-Scene loadSceneBundle(const SceneBundle& bundle) {
+Scene loadSceneFile(const std::filesystem::path& path, const SceneLoadOptions& options) {
+    return loadSceneFile(path, nullptr, options);
+}
+
+Scene loadSceneBundle(const SceneBundle& bundle, const SceneLimits& limits) {
+    if (bundle.sceneText.size() > limits.maxSceneFileBytes) {
+        throw SceneError::inFile(bundle.sceneName,
+                                 "scene file is " + std::to_string(bundle.sceneText.size()) +
+                                     " bytes, over the limit of " +
+                                     std::to_string(limits.maxSceneFileBytes) + " bytes");
+    }
+    for (const auto& [name, bytes] : bundle.files) {
+        checkBundlePath(name);
+        if (bytes.size() > limits.maxFileBytes) {
+            throw SceneError::inFile(name, "file is " + std::to_string(bytes.size()) +
+                                               " bytes, over the limit of " +
+                                               std::to_string(limits.maxFileBytes) + " bytes");
+        }
+    }
     BundleFileSource files(bundle.files);
-    return parseScene(bundle.sceneText, bundle.sceneName, files);
+    return parseScene(bundle.sceneText, bundle.sceneName, files, limits);
 }
 
 }  // namespace igi

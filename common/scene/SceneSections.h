@@ -8,6 +8,7 @@
 #include "scene/Scene.h"
 #include "scene/SceneAssets.h"
 #include "scene/SceneBounds.h"
+#include "scene/SceneLimits.h"
 
 namespace igi {
 
@@ -26,8 +27,9 @@ Camera frameBounds(const Bounds3& bounds, const ImageSettings& image, const std:
 /// Adds the point light at the camera that gives an irradiance of 1 at the look-at point.
 void addHeadlight(Scene& scene);
 
-/// "lights": [{type: "point" | "quad", ...}].
-void parseLights(const JsonNode& node, Scene& scene);
+/// "lights": [{type: "point" | "quad", ...}]; refuses more than `maxLights` in the scene.
+void parseLights(const JsonNode& node, Scene& scene,
+                 std::size_t maxLights = SceneLimits{}.maxLights);
 
 /// "meshes": [{file, name, transform}]: loads every file into scene.meshes (and its glTF
 /// lights into scene.pointLights).

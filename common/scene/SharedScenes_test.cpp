@@ -146,7 +146,7 @@ TEST(SharedScenes, SponzaWithCaseMismatchedTextures) {
     REQUIRE_SHARED_SCENES();
     const auto start = std::chrono::steady_clock::now();
     SceneBundle bundle;
-    const Scene s = loadSceneFile(test::testdataDir() / "sponza.json", &bundle);
+    const Scene s = loadSceneFile(test::testdataDir() / "sponza.json", &bundle, test::trusted());
     spdlog::info("sponza loaded in {:.3f} s",
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     expectConsistent(s);
@@ -163,7 +163,7 @@ TEST(SharedScenes, SponzaWithCaseMismatchedTextures) {
 
 TEST(SharedScenes, GltfSamples) {
     REQUIRE_SHARED_SCENES();
-    const Scene s = loadSceneFile(test::testdataDir() / "gltf-samples.json");
+    const Scene s = loadSceneFile(test::testdataDir() / "gltf-samples.json", test::trusted());
     expectConsistent(s);
     ASSERT_EQ(s.meshes.size(), 2u);
     // EmissiveStrengthTest: Emit4 is (0.1, 0.5, 0.9) x 4.

@@ -29,6 +29,13 @@ inline std::optional<std::filesystem::path> sharedScenesDir() {
     return dir;
 }
 
+/// For test scene files that reach ../shared/scenes: trusted, so they may leave their folder.
+inline SceneLoadOptions trusted() {
+    SceneLoadOptions options;
+    options.allowOutsidePaths = true;
+    return options;
+}
+
 /// Parses scene text whose referenced files are given in memory.
 inline Scene parseInline(const std::string& json, std::map<std::string, std::string> files = {}) {
     BundleFileSource source(std::move(files));

@@ -25,6 +25,9 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kMaxTextureSide = 32768;
+// Colour comes from the first three channels; more (alpha, depth, a TIFF claiming 65535) are
+// never read.
+constexpr int kReadChannels = 3;
 
 float srgbToLinear(float c) {
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
@@ -45,15 +48,25 @@ std::string lower(std::string s) {
     return s;
 }
 
+// The name's extension for a temporary file, lower case, or nothing when it holds anything
+// but letters and digits (the name comes from a scene file).
+std::string safeExtension(const std::string& name) {
+    const std::string ext = lower(fs::path(name).extension().string());
+    if (ext.size() < 2 || ext.size() > 8) return "";
+    for (std::size_t i = 1; i < ext.size(); ++i) {
+        if (!std::isalnum(static_cast<unsigned char>(ext[i]))) return "";
+    }
+    return ext;
+}
+
 // A temporary copy of the bytes for decoders that cannot read through an IOProxy; removed
 // when it goes out of scope.
 class TempImageFile {
   public:
     TempImageFile(const std::string& name, const std::string& bytes) {
         static std::atomic<int> counter{0};
-        path_ = fs::temp_directory_path() /
-                ("igi-texture-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) +
-                 lower(fs::path(name).extension().string()));
+        path_ = fs::temp_directory_path() / ("igi-texture-" + std::to_string(::getpid()) + "-" +
+                                             std::to_string(counter++) + safeExtension(name));
         std::ofstream out(path_, std::ios::binary);
         out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         if (!out) throw SceneError::inFile(name, "cannot write a temporary copy to decode it");
@@ -106,7 +119,7 @@ glm::vec3 rgbAt(const std::vector<T>& pixels, std::size_t i, int channels, Decod
 
 void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture) {
     const OIIO::ImageSpec& spec = in.spec();
-    const int channels = spec.nchannels;
+    const int channels = std::min(spec.nchannels, kReadChannels);
     const std::size_t count = static_cast<std::size_t>(texture.width) * texture.height;
     texture.texels.resize(count);
     if (spec.format == OIIO::TypeDesc::UINT8 && !isLinear(spec)) {
@@ -135,6 +148,31 @@ void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture)
     }
 }
 
+void checkImageSize(const std::string& name, const OIIO::ImageSpec& spec,
+                    const TextureLimits& limits) {
+    if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxTextureSide ||
+        spec.height > kMaxTextureSide || spec.nchannels <= 0 || spec.depth > 1) {
+        throw SceneError::inFile(
+            name, "unsupported image size " + std::to_string(spec.width) + " x " +
+                      std::to_string(spec.height) +
+                      (spec.depth > 1 ? " x " + std::to_string(spec.depth) : "") + " pixels, " +
+                      std::to_string(spec.nchannels) + " channels");
+    }
+    const std::uint64_t pixels = static_cast<std::uint64_t>(spec.width) * spec.height;
+    const std::string size = std::to_string(spec.width) + " x " + std::to_string(spec.height);
+    if (pixels > limits.maxPixels) {
+        throw SceneError::inFile(name, "image is " + size + " pixels, over the limit of " +
+                                           std::to_string(limits.maxPixels) +
+                                           " pixels per texture");
+    }
+    if (limits.scenePixels) {
+        if (!limits.scenePixels->fits(pixels))
+            throw SceneError::inFile(
+                name, "image is " + size + " pixels: " + limits.scenePixels->exceeded(pixels));
+        limits.scenePixels->add(pixels);
+    }
+}
+
 glm::vec3 meanOf(const std::vector<glm::vec3>& texels) {
     glm::dvec3 sum(0.0);
     for (const glm::vec3& t : texels) sum += glm::dvec3(t);
@@ -143,17 +181,14 @@ glm::vec3 meanOf(const std::vector<glm::vec3>& texels) {
 
 }  // namespace
 
-Texture decodeTexture(const std::string& name, const std::string& bytes) {
+Texture decodeTexture(const std::string& name, const std::string& bytes,
+                      const TextureLimits& limits) {
     OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
     std::unique_ptr<TempImageFile> temp;
     auto in = openImage(name, bytes, proxy, temp);
+    // Only the header has been read: judge the size before allocating for pixels.
+    checkImageSize(name, in->spec(), limits);
     const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxTextureSide ||
-        spec.height > kMaxTextureSide || spec.nchannels <= 0) {
-        throw SceneError::inFile(name, "unsupported image size " + std::to_string(spec.width) +
-                                           " x " + std::to_string(spec.height) + " x " +
-                                           std::to_string(spec.nchannels));
-    }
     Texture texture;
     texture.path = name;
     texture.width = spec.width;
