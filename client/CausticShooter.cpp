@@ -21,10 +21,46 @@ bool insideSphere(glm::vec3 origin, glm::vec3 center, float radius) {
     return glm::length(center - origin) <= radius;
 }
 
-float coneCosine(glm::vec3 origin, glm::vec3 center, float radius) {
-    const float d = glm::length(center - origin);
-    const float sinMax = radius / d;
-    return std::sqrt(std::max(0.0f, 1.0f - sinMax * sinMax));
+// The cone of directions from a point outside a target's sphere that holds the sphere. Its width
+// is kept as 1 - cos(half-angle), computed from the sine in double: as 1 - sqrt(1 - sin^2) in
+// float it loses every digit for a target that looks small from the light (it is exactly 0, a
+// cone of no width with an infinite density, below sin = 2.4e-4, and several per cent off at
+// sin = 1e-3), which gave the caustic photons of small or distant mirrors and glass a wrong
+// power, or none.
+struct Cone {
+    glm::dvec3 axis{0.0};
+    double sin2 = 0;         ///< sin^2 of the half-angle
+    double oneMinusCos = 0;  ///< 1 - cos of the half-angle, in (0, 1)
+};
+
+Cone coneAround(glm::vec3 origin, glm::vec3 center, float radius) {
+    const glm::dvec3 toCenter = glm::dvec3(center) - glm::dvec3(origin);
+    const double d2 = glm::dot(toCenter, toCenter);
+    Cone cone;
+    cone.axis = toCenter / std::sqrt(d2);
+    cone.sin2 = std::min(1.0, double(radius) * double(radius) / d2);
+    cone.oneMinusCos = cone.sin2 / (1.0 + std::sqrt(1.0 - cone.sin2));
+    return cone;
+}
+
+// Whether `direction` lies in the cone, by its sine (well conditioned for a narrow cone, where
+// comparing cosines near 1 is not).
+bool inCone(const Cone& cone, glm::vec3 direction) {
+    const glm::dvec3 w = glm::normalize(glm::dvec3(direction));
+    if (glm::dot(w, cone.axis) <= 0) return false;
+    const glm::dvec3 c = glm::cross(w, cone.axis);
+    return glm::dot(c, c) <= cone.sin2;
+}
+
+// A uniform direction in the cone (density 1 / (2 pi (1 - cos))), with its sine computed from
+// 1 - cos directly for the same reason.
+glm::vec3 sampleCone(const Cone& cone, glm::vec2 u) {
+    const double h = double(u.x) * cone.oneMinusCos;  // 1 - cos(theta)
+    const double sinTheta = std::sqrt(std::max(0.0, h * (2.0 - h)));
+    const double phi = 2.0 * double(kPi) * double(u.y);
+    const glm::vec3 local(float(sinTheta * std::cos(phi)), float(sinTheta * std::sin(phi)),
+                          float(1.0 - h));
+    return Frame(glm::vec3(cone.axis)).toWorld(local);
 }
 
 }  // namespace
@@ -56,17 +92,16 @@ CausticShooter::CausticShooter(const TraceableScene& scene, const Lights& lights
 }
 
 float CausticShooter::directionPdf(glm::vec3 origin, glm::vec3 direction) const {
-    float pdf = 0;
+    double pdf = 0;
     for (const Target& t : targets_) {
         if (insideSphere(origin, t.center, t.radius)) {
-            pdf += 1.0f / (4.0f * kPi);
+            pdf += 1.0 / (4.0 * double(kPi));
             continue;
         }
-        const float cosMax = coneCosine(origin, t.center, t.radius);
-        if (glm::dot(direction, glm::normalize(t.center - origin)) >= cosMax)
-            pdf += uniformConePdf(cosMax);
+        const Cone cone = coneAround(origin, t.center, t.radius);
+        if (inCone(cone, direction)) pdf += 1.0 / (2.0 * double(kPi) * cone.oneMinusCos);
     }
-    return pdf / float(targets_.size());
+    return float(pdf / double(targets_.size()));
 }
 
 bool CausticShooter::samplePhotonDirection(glm::vec3 origin, float uTarget, glm::vec2 u,
@@ -77,9 +112,7 @@ bool CausticShooter::samplePhotonDirection(glm::vec3 origin, float uTarget, glm:
     if (insideSphere(origin, t.center, t.radius)) {
         direction = squareToUniformSphere(u);
     } else {
-        const float cosMax = coneCosine(origin, t.center, t.radius);
-        direction =
-            Frame(glm::normalize(t.center - origin)).toWorld(squareToUniformCone(u, cosMax));
+        direction = sampleCone(coneAround(origin, t.center, t.radius), u);
     }
     // The same direction could have come from another target's cone: use the mixture density.
     pdf = directionPdf(origin, direction);

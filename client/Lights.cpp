@@ -1,6 +1,9 @@
 #include "Lights.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 
 #include <glm/geometric.hpp>
 
@@ -14,10 +17,29 @@ std::uint64_t triangleKey(std::uint32_t mesh, std::uint32_t triangle) {
     return (std::uint64_t(mesh) << 32) | triangle;
 }
 
+// A triangle's corners from the smallest one on, in its own cyclic order: the same for the same
+// triangle listed twice, whatever corner it starts from, but not for the reversed winding (which
+// faces, and emits, the other way).
+using Corners = std::array<float, 9>;
+Corners cornersOf(const TraceableScene::WorldTriangle& t) {
+    const glm::vec3 p[3] = {t.p0, t.p1, t.p2};
+    auto key = [&](int first) {
+        Corners c;
+        for (int i = 0; i < 3; ++i)
+            for (int k = 0; k < 3; ++k) c[3 * i + k] = p[(first + i) % 3][k];
+        return c;
+    };
+    return std::min({key(0), key(1), key(2)});
+}
+
 }  // namespace
 
 Lights::Lights(const TraceableScene& traceable, const std::vector<PointLight>& pointLights) {
     std::vector<float> power;
+    // A face listed twice (duplicated in its file) is one surface, seen once: it must be one
+    // light, or sampling it would count its light twice. The copy maps to the same emitter so that
+    // a path that hits the copy finds the density of the light it is.
+    std::map<Corners, std::uint32_t> emitterAt;
     for (const auto& t : traceable.emissiveTriangles()) {
         Emitter e;
         e.p0 = t.p0;
@@ -26,6 +48,12 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PointLight>& p
         const glm::vec3 c = glm::cross(e.e1, e.e2);
         const float len = glm::length(c);
         if (!(len > 0) || !std::isfinite(len)) continue;  // a degenerate triangle emits nothing
+        const auto [it, fresh] =
+            emitterAt.try_emplace(cornersOf(t), std::uint32_t(emitters_.size()));
+        if (!fresh) {
+            triangleToEmitter_[triangleKey(t.mesh, t.triangle)] = it->second;
+            continue;
+        }
         e.normal = c / len;
         e.area = 0.5f * len;
         e.emitted = traceable.materials()[t.material].emission;

@@ -22,9 +22,9 @@ struct LightSample {
     bool isPoint = false;
 };
 
-/// Every light source of a scene: emissive triangles (from Ke materials and quad lights) and
-/// point lights, chosen by emitted power so that scenes with many lights spend their few
-/// samples on the lights that matter.
+/// Every light source of a scene: emissive triangles (from Ke materials and quad lights; zero-area
+/// ones skipped, a face listed twice counted once) and point lights, chosen by emitted power so
+/// that scenes with many lights spend their few samples on the lights that matter.
 class Lights {
   public:
     /// The emissive triangles of `traceable` (quad lights included) and the point lights that

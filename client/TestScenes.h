@@ -2,6 +2,7 @@
 // Scenes built in code and a small in-process renderer, for the client's tests.
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <utility>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "TileRenderer.h"
 #include "TraceableScene.h"
 #include "image/Image.h"
+#include "math/Color.h"
 #include "render/Accumulator.h"
 #include "render/DiscontinuityFilter.h"
 #include "render/FrameBuffer.h"
@@ -78,6 +80,79 @@ inline Material diffuse(glm::vec3 albedo) {
     return m;
 }
 
+/// A cuboid of half extents `half` about `centre`, turned by `yawDeg` about the y axis, with
+/// its faces wound outward.
+inline Mesh makeBox(glm::vec3 centre, glm::vec3 half, float yawDeg, std::uint32_t material) {
+    const float a = yawDeg * 3.14159265f / 180.0f, c = std::cos(a), s = std::sin(a);
+    auto place = [&](glm::vec3 p) {
+        p *= half;
+        return centre + glm::vec3(c * p.x + s * p.z, p.y, -s * p.x + c * p.z);
+    };
+    Mesh mesh;
+    mesh.name = "box";
+    for (int i = 0; i < 8; ++i)
+        mesh.positions.push_back(
+            place({i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 1.0f : -1.0f}));
+    // Corner i has x = bit 0, y = bit 1, z = bit 2; each face counter-clockwise seen from outside.
+    const unsigned faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                  {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    for (const auto& f : faces) {
+        mesh.triangles.push_back({f[0], f[1], f[2]});
+        mesh.triangles.push_back({f[0], f[2], f[3]});
+    }
+    mesh.materialIds.assign(mesh.triangles.size(), material);
+    return mesh;
+}
+
+/// A small Cornell-like room of side `scale` (corner at the origin, open toward +z where the
+/// camera is): white floor, ceiling and back wall, red left and green right walls, a turned
+/// box, a quad light under the ceiling (radiance independent of scale) and a point light of
+/// intensity 0.3 scale^2, so that the image is the same at every scale. With `glassBall`, a
+/// glass sphere stands on the floor. Materials: 0 white, 1 red, 2 green, 3 glass.
+inline Scene cornellBox(float scale, bool glassBall = false) {
+    Scene scene;
+    scene.materials = {diffuse(glm::vec3(0.75f)), diffuse({0.7f, 0.15f, 0.1f}),
+                       diffuse({0.15f, 0.6f, 0.15f})};
+    Material glass;
+    glass.name = "glass";
+    glass.glass = true;
+    scene.materials.push_back(glass);
+    const float s = scale;
+    const glm::vec3 x(s, 0, 0), y(0, s, 0), z(0, 0, s), o(0.0f);
+    scene.meshes = {
+        makeQuad(o, z, x, 0),  // floor, facing +y
+        makeQuad(y, x, z, 0),  // ceiling, facing -y
+        makeQuad(o, x, y, 0),  // back wall, facing +z
+        makeQuad(o, y, z, 1),  // left wall, facing +x
+        makeQuad(x, z, y, 2),  // right wall, facing -x
+        makeBox(s * glm::vec3(0.65f, 0.2f, 0.35f), s * glm::vec3(0.15f, 0.2f, 0.15f), 20.0f, 0)};
+    if (glassBall)
+        scene.meshes.push_back(makeIcosphere(2, 0.14f * s, s * glm::vec3(0.3f, 0.145f, 0.62f), 3));
+    QuadLight light;
+    light.name = "ceiling light";
+    light.corner = s * glm::vec3(0.35f, 0.995f, 0.35f);
+    light.edge1 = s * glm::vec3(0.3f, 0, 0);
+    light.edge2 = s * glm::vec3(0, 0, 0.3f);  // cross(edge1, edge2) points down
+    light.radiance = glm::vec3(8.0f);
+    scene.quadLights.push_back(light);
+    scene.pointLights.push_back(
+        {"fill", s * glm::vec3(0.2f, 0.8f, 0.75f), glm::vec3(0.3f * s * s)});
+    scene.camera = {s * glm::vec3(0.5f, 0.5f, 1.9f), s * glm::vec3(0.5f, 0.5f, 0.0f),
+                    glm::vec3(0, 1, 0), 40};
+    scene.image = {48, 36, 0};
+    return scene;
+}
+
+/// Values of a tile's planes that are NaN or infinite (depth may be +inf: no surface, but not
+/// NaN or -inf).
+inline std::size_t countNonFinite(const TileChannels& c) {
+    std::size_t bad = 0;
+    for (const auto* plane : {&c.irradiance, &c.reflectance, &c.normal, &c.unfiltered})
+        for (const glm::vec3& v : *plane) bad += isFinite(v) ? 0 : 1;
+    for (float d : c.depth) bad += std::isnan(d) || d == -std::numeric_limits<float>::infinity();
+    return bad;
+}
+
 /// Renders `frames` frames of a whole image in this process (tiles, discontinuity buffer,
 /// accumulation: the pipeline without the network) and returns the accumulated mean.
 class InProcessRenderer {
@@ -104,6 +179,7 @@ class InProcessRenderer {
                     renderer_.renderNow(pool_, firstFrame + std::uint32_t(f), t);
                 frame.scatter(t, s.interleaveX, s.interleaveY, r.channels);
                 shadowRays_ += r.stats.shadowRays;
+                nonFinite_ += countNonFinite(r.channels);
             }
             discontinuityFilterRows(frame,
                                     {s.effectiveFilterX(), s.effectiveFilterY(),
@@ -119,7 +195,10 @@ class InProcessRenderer {
 
     TileRenderer& renderer() { return renderer_; }
     const TraceableScene& traceable() const { return traceable_; }
+    ThreadPool& pool() { return pool_; }
     std::uint64_t shadowRays() const { return shadowRays_; }
+    /// NaN or infinite values in every tile rendered so far (see countNonFinite).
+    std::size_t nonFiniteValues() const { return nonFinite_; }
 
   private:
     Scene scene_;
@@ -129,6 +208,7 @@ class InProcessRenderer {
     TileRenderer renderer_;
     ThreadPool pool_;
     std::uint64_t shadowRays_ = 0;
+    std::size_t nonFinite_ = 0;
 };
 
 inline glm::dvec3 meanOf(const Image& image) {

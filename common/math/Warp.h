@@ -40,6 +40,8 @@ inline glm::vec3 squareToUniformSphere(glm::vec2 u) {
 }
 
 /// Uniform direction in the cone of half-angle acos(cosMax) about +Z; pdf 1/(2 pi (1-cosMax)).
+/// Not for narrow cones: a float cosMax near 1 keeps few digits of 1 - cosMax (none below a
+/// half-angle of 2.4e-4 rad); CausticShooter keeps 1 - cos itself, computed from the sine.
 inline glm::vec3 squareToUniformCone(glm::vec2 u, float cosMax) {
     const float z = 1.0f - u.x * (1.0f - cosMax);
     const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
