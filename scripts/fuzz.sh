@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang into build-fuzz/ and runs each for a longer time
+# (docs/FUZZING.md). Inputs that find new coverage collect in build-fuzz/fuzz/corpus/<target>/
+# and are reused by the next run; a crash stops that fuzzer and leaves its reproducer in
+# build-fuzz/fuzz/artifacts/<target>/.
+# Usage: scripts/fuzz.sh [seconds per target, default 600] [extra libFuzzer flags...]
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+seconds="${1:-600}"
+shift || true
+build="$root/build-fuzz"
+
+if ! command -v clang++ >/dev/null; then
+  echo "clang++ not found: run scripts/setup.sh clang libclang-rt-14-dev" >&2
+  exit 1
+fi
+CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DIGI_FUZZ=ON \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build "$build" --target fuzz_protocol fuzz_scene -j "$(nproc)"
+
+status=0
+for target in protocol scene; do
+  corpus="$build/fuzz/corpus/$target"
+  artifacts="$build/fuzz/artifacts/$target"
+  log="$build/fuzz/$target.log"
+  mkdir -p "$corpus" "$artifacts"
+  echo "== fuzz_$target: $seconds s (log: $log)"
+  # New inputs go to the first folder; the committed seeds are only read.
+  if "$build/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=30 -print_final_stats=1 \
+    -artifact_prefix="$artifacts/" "$@" "$corpus" "$root/fuzz/corpus/$target" >"$log" 2>&1; then
+    result="ok"
+  else
+    result="FAILED (reproducer in $artifacts/)"
+    status=1
+  fi
+  # The last status line ("#N DONE cov: ... ft: ... corp: ...") and the execution count.
+  grep -E '^#[0-9]+' "$log" | tail -n 1 || true
+  runs="$(grep -o 'number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo '?')"
+  echo "fuzz_$target: $runs executions, $result"
+done
+exit "$status"
