@@ -4,6 +4,13 @@
 #include <stdexcept>
 
 namespace igi {
+namespace {
+
+// A client that has not completed a tile yet (it may be building its first light sets) is
+// allowed this long before its tiles are copied to others.
+constexpr double kUnmeasuredLatency = 1.0;
+
+}  // namespace
 
 TileScheduler::TileScheduler(std::vector<Tile> layout, int setCount)
     : layout_(std::move(layout)), setCount_(setCount) {
@@ -81,7 +88,14 @@ std::optional<Assignment> TileScheduler::takeDuplicate(ClientId client, double m
             // One spare copy per tile is enough to get past one slow client.
             if (t.state != State::InFlight || t.holders.size() >= 2 || t.holders.count(client))
                 continue;
-            if (std::chrono::duration<double>(now - t.given).count() < minAge) continue;
+            bool late = true;
+            for (const auto& [holder, since] : t.holders) {
+                const auto measured = latency(holder);
+                const double allowed =
+                    std::max(minAge, measured ? 3.0 * *measured : kUnmeasuredLatency);
+                late &= std::chrono::duration<double>(now - since).count() >= allowed;
+            }
+            if (!late) continue;
             give(client, frame, i, f);
             return Assignment{frame, i, true};
         }
@@ -90,11 +104,15 @@ std::optional<Assignment> TileScheduler::takeDuplicate(ClientId client, double m
 }
 
 void TileScheduler::give(ClientId client, std::uint32_t frame, std::uint32_t tile, FrameState& f) {
-    if (f.tiles[tile].state == State::Pending)
-        f.tiles[tile].given = std::chrono::steady_clock::now();
     f.tiles[tile].state = State::InFlight;
-    f.tiles[tile].holders.insert(client);
+    f.tiles[tile].holders[client] = std::chrono::steady_clock::now();
     held_[client].insert({frame, tile});
+}
+
+std::optional<double> TileScheduler::latency(ClientId client) const {
+    const auto it = latency_.find(client);
+    if (it == latency_.end()) return std::nullopt;
+    return it->second;
 }
 
 bool TileScheduler::complete(ClientId client, std::uint32_t frame, std::uint32_t tile) {
@@ -106,8 +124,12 @@ bool TileScheduler::complete(ClientId client, std::uint32_t frame, std::uint32_t
     if (t.state != State::InFlight || !t.holders.count(client)) return false;
     t.state = State::Done;
     ++it->second.done;
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t.holders[client]).count();
+    auto [entry, fresh] = latency_.try_emplace(client, seconds);
+    if (!fresh) entry->second = 0.8 * entry->second + 0.2 * seconds;
     // Other holders of a copy keep rendering it; their results will be dropped.
-    for (ClientId holder : t.holders) held_[holder].erase({frame, tile});
+    for (const auto& [holder, since] : t.holders) held_[holder].erase({frame, tile});
     t.holders.clear();
     return true;
 }
@@ -142,6 +164,7 @@ int TileScheduler::releaseClient(ClientId client) {
         held_.erase(held);
     }
     currentSet_.erase(client);
+    latency_.erase(client);
     return released;
 }
 

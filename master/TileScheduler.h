@@ -38,9 +38,12 @@ class TileScheduler {
     /// Opens a frame: all its tiles become pending. Frames must be opened in increasing order.
     void openFrame(std::uint32_t frame);
     /// The next tile for `client`, or nothing. Only frames opened so far are considered. A copy
-    /// of a tile held elsewhere is given only once that tile has been out `minDuplicateAge`
-    /// seconds.
+    /// of a tile held elsewhere is given only once it is late: out for at least
+    /// `minDuplicateAge` seconds and three times its holder's usual latency (a holder not yet
+    /// measured is allowed a second), so that a slower client is not raced for every tile.
     std::optional<Assignment> next(ClientId client, double minDuplicateAge = 0);
+    /// The holder's usual latency, as measured from its completed tiles (seconds), if any.
+    std::optional<double> latency(ClientId client) const;
     /// A result arrived. True if it completes the tile (the first copy); false if the tile was
     /// already done or is unknown (then the result must be dropped).
     bool complete(ClientId client, std::uint32_t frame, std::uint32_t tile);
@@ -62,8 +65,8 @@ class TileScheduler {
     enum class State : std::uint8_t { Pending, InFlight, Done };
     struct TileState {
         State state = State::Pending;
-        std::set<ClientId> holders;
-        std::chrono::steady_clock::time_point given;  ///< when the first copy went out
+        /// Who holds a copy, and since when.
+        std::map<ClientId, std::chrono::steady_clock::time_point> holders;
     };
     struct FrameState {
         std::vector<TileState> tiles;
@@ -83,6 +86,8 @@ class TileScheduler {
     std::map<std::uint32_t, FrameState> frames_;
     std::map<ClientId, int> currentSet_;  ///< the k each client works on
     std::map<ClientId, std::set<std::pair<std::uint32_t, std::uint32_t>>> held_;
+    /// Each client's usual time from receiving a tile to its result (moving average).
+    std::map<ClientId, double> latency_;
 };
 
 }  // namespace igi

@@ -83,9 +83,12 @@ TEST(TileScheduler, OnlyAHolderCanCompleteATile) {
 TEST(TileScheduler, IdleClientsGetCopiesOfOldTilesFirstResultWins) {
     TileScheduler s(makeTiles(6, 3, 3, 3, 1), 9);  // 2 regions x 9 cells = 18 tiles
     s.openFrame(0);
+    // The slow client's first tile comes back at once: its latency is measured (about zero).
+    s.complete(1, 0, s.next(1)->tile);
+    ASSERT_TRUE(s.latency(1).has_value());
     std::vector<std::uint32_t> slow;
-    while (auto a = s.next(1)) slow.push_back(a->tile);  // the slow client holds everything
-    ASSERT_EQ(slow.size(), 18u);
+    while (auto a = s.next(1)) slow.push_back(a->tile);  // then it holds everything else
+    ASSERT_EQ(slow.size(), 17u);
     EXPECT_FALSE(s.next(2, 10.0));  // too young to copy
     const auto copy = s.next(2, 0.0);
     ASSERT_TRUE(copy);
@@ -93,7 +96,18 @@ TEST(TileScheduler, IdleClientsGetCopiesOfOldTilesFirstResultWins) {
     EXPECT_EQ(copy->tile, slow[0]);              // the oldest work first
     EXPECT_TRUE(s.complete(2, 0, copy->tile));   // the copy's result wins
     EXPECT_FALSE(s.complete(1, 0, copy->tile));  // the original's is dropped
-    EXPECT_EQ(s.inFlight(1), 17);
+    EXPECT_EQ(s.inFlight(1), 16);
+}
+
+TEST(TileScheduler, ATileOfAClientNotYetMeasuredIsNotCopiedAtOnce) {
+    // A client that just joined builds its light sets first; racing it at once would leave it
+    // nothing but lost copies.
+    TileScheduler s(makeTiles(3, 3, 3, 3, 1), 9);
+    s.openFrame(0);
+    while (s.next(1)) {
+    }
+    EXPECT_FALSE(s.latency(1).has_value());
+    EXPECT_FALSE(s.next(2, 0.0));
 }
 
 TEST(TileScheduler, PipelinedFramesTheOldestFirst) {
