@@ -59,19 +59,70 @@ bool ClientSession::connect() {
 }
 
 int ClientSession::run() {
-    if (!connect()) return 2;
+    try {
+        key_ = net::clusterKeyFrom(options_.secretFile);  // --secret-file, else IGI_SECRET
+    } catch (const std::invalid_argument& e) {
+        spdlog::error("{}", e.what());
+        return kRefused;
+    }
+    if (!key_ && !options_.insecure) {
+        spdlog::error(
+            "no cluster secret: give --secret-file FILE or IGI_SECRET (or --insecure, for loopback "
+            "tests)");
+        return kRefused;
+    }
+    if (!connect()) return kUnreachable;
     spdlog::info("connected to the master at {}", connection_->peer());
+    exitCode_ = kLost;
     connection_->start(
         [this](const proto::Header& h, proto::Message m) { onMessage(h, std::move(m)); },
         [this](const std::string& reason) { onClose(reason); });
+    // The master speaks first (a Challenge); this client says nothing before it.
+    scheduleHeartbeat();
+    io_.run();
+    return exitCode_;
+}
+
+void ClientSession::giveUp(const std::string& reason) {
+    exitCode_ = kRefused;
+    refuse(reason);
+}
+
+void ClientSession::onChallenge(const proto::Challenge& c) {
+    if (challenged_) return refuse("a second Challenge");
+    challenged_ = true;
+    if (c.protocolVersion != proto::kVersion)
+        return giveUp("the master speaks protocol " + std::to_string(c.protocolVersion) +
+                      ", this client " + std::to_string(proto::kVersion));
+    if (c.buildId != IGI_BUILD_ID)
+        return giveUp("the master is build " + c.buildId + ", this client build " IGI_BUILD_ID);
+    if (c.secretRequired && !key_)
+        return giveUp(
+            "the master requires the cluster secret: give --secret-file FILE or IGI_SECRET");
+    if (!c.secretRequired && !options_.insecure)
+        return giveUp(
+            "the master runs without a cluster secret and cannot prove who it is; refusing "
+            "(--insecure accepts it)");
+    nonce_ = net::ClusterKey::randomNonce();
     proto::Hello hello;
     hello.buildId = IGI_BUILD_ID;
     hello.threads = pool_.size();
     hello.hostname = boost::asio::ip::host_name();
+    hello.nonce = nonce_;
+    if (c.secretRequired) hello.proof = key_->clientProof(c.nonce, nonce_);
+    masterNonce_ = c.nonce;
+    requireMasterProof_ = c.secretRequired;
     connection_->send(hello, 0, 0);
-    scheduleHeartbeat();
-    io_.run();
-    return exitCode_;
+}
+
+void ClientSession::onWelcome(const proto::Welcome& w) {
+    if (!challenged_ || welcomed_) return refuse("an unexpected Welcome");
+    // Work is taken only from a master that proves it holds the secret.
+    if (requireMasterProof_ &&
+        (!w.proof || !net::ClusterKey::same(*w.proof, key_->masterProof(masterNonce_, nonce_))))
+        return giveUp("the master could not prove it holds the cluster secret");
+    welcomed_ = true;
+    spdlog::info("the master calls this client {}", w.clientId);
 }
 
 void ClientSession::scheduleHeartbeat() {
@@ -84,24 +135,28 @@ void ClientSession::scheduleHeartbeat() {
 }
 
 void ClientSession::onMessage(const proto::Header& header, proto::Message message) {
-    if (auto* welcome = std::get_if<proto::Welcome>(&message)) {
-        spdlog::info("the master calls this client {}", welcome->clientId);
-    } else if (auto* data = std::get_if<proto::SceneData>(&message)) {
-        onSceneData(header, std::move(*data));
-    } else if (auto* update = std::get_if<proto::SceneUpdate>(&message)) {
-        onSceneUpdate(header.epoch, std::move(update->changes));
-    } else if (auto* tile = std::get_if<proto::TileAssign>(&message)) {
-        onTile(header, *tile);
-    } else if (std::holds_alternative<proto::Shutdown>(message)) {
-        spdlog::info("the master ended the session");
-        exitCode_ = 0;
-        connection_->close("shutdown");
-    } else if (auto* error = std::get_if<proto::Error>(&message)) {
+    if (std::holds_alternative<proto::Heartbeat>(message)) return;  // it only keeps the line alive
+    if (auto* error = std::get_if<proto::Error>(&message)) {
         spdlog::error("the master refused this client: {}", error->reason);
-        connection_->close("error from the master");
-    } else if (!std::holds_alternative<proto::Heartbeat>(message)) {
-        refuse("unexpected " + proto::messageTypeName(proto::typeOf(message)) + " from the master");
+        // Refused during the handshake (secret, build, a full master): retrying will not help.
+        if (!welcomed_) exitCode_ = kRefused;
+        return connection_->close("error from the master");
     }
+    if (auto* challenge = std::get_if<proto::Challenge>(&message)) return onChallenge(*challenge);
+    if (auto* welcome = std::get_if<proto::Welcome>(&message)) return onWelcome(*welcome);
+    if (!welcomed_)
+        return refuse(proto::messageTypeName(proto::typeOf(message)) + " before the handshake");
+    if (auto* data = std::get_if<proto::SceneData>(&message))
+        return onSceneData(header, std::move(*data));
+    if (auto* update = std::get_if<proto::SceneUpdate>(&message))
+        return onSceneUpdate(header.epoch, std::move(update->changes));
+    if (auto* tile = std::get_if<proto::TileAssign>(&message)) return onTile(header, *tile);
+    if (std::holds_alternative<proto::Shutdown>(message)) {
+        spdlog::info("the master ended the session");
+        exitCode_ = kShutdown;
+        return connection_->close("shutdown");
+    }
+    refuse("unexpected " + proto::messageTypeName(proto::typeOf(message)) + " from the master");
 }
 
 void ClientSession::refuse(const std::string& reason) {

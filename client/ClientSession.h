@@ -2,9 +2,11 @@
 
 #include <atomic>
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@
 #include "Messages.h"
 #include "SceneGeometry.h"
 #include "SceneVersion.h"
+#include "net/ClusterKey.h"
 #include "net/Connection.h"
 #include "util/ThreadPool.h"
 
@@ -29,6 +32,17 @@ struct ClientOptions {
     /// Renders each tile once, then answers every later request for it with the recorded
     /// result: a client as fast as the network, to measure the master's ceiling.
     bool replay = false;
+    std::filesystem::path secretFile;  ///< the cluster secret (else IGI_SECRET)
+    bool insecure = false;             ///< join a master without a secret (loopback tests)
+    double reconnectSeconds = 60;      ///< after losing the master, try again this long (0: exit)
+};
+
+/// How a session ended (the process exit code).
+enum ClientExit : int {
+    kShutdown = 0,     ///< the master ended the session
+    kLost = 1,         ///< the connection broke
+    kUnreachable = 2,  ///< no master answered, or a setup error
+    kRefused = 3,      ///< the handshake failed: wrong secret, other build: retrying is pointless
 };
 
 /// A render client's whole life: connect to the master, say hello, receive the scene, build
@@ -45,6 +59,10 @@ class ClientSession {
   private:
     bool connect();
     void onMessage(const proto::Header& header, proto::Message message);
+    void onChallenge(const proto::Challenge& challenge);
+    void onWelcome(const proto::Welcome& welcome);
+    /// A problem retrying cannot solve: say it, and end with kRefused.
+    void giveUp(const std::string& reason);
     void onClose(const std::string& reason);
     /// The master broke the protocol: say why, then close.
     void refuse(const std::string& reason);
@@ -62,6 +80,12 @@ class ClientSession {
     boost::asio::io_context io_;
     boost::asio::steady_timer heartbeat_;
     std::shared_ptr<net::Connection> connection_;
+    std::optional<net::ClusterKey> key_;
+    proto::AuthBytes nonce_{};
+    proto::AuthBytes masterNonce_{};
+    bool requireMasterProof_ = true;
+    bool challenged_ = false;
+    bool welcomed_ = false;  ///< the master proved itself: work may come
     EmbreeDevice device_;
     // (the members below are used on the io thread only, but for the device and the pool)
     std::unique_ptr<Scene> scene_;             ///< as loaded from the bundle
@@ -74,7 +98,7 @@ class ClientSession {
     bool sceneRequested_ = false;  ///< SceneData arrived (io thread)
     bool ready_ = false;           ///< the scene is loaded (io thread)
     std::uint32_t newestFrame_ = 0;
-    int exitCode_ = 1;
+    int exitCode_ = kLost;
     std::mutex replayMutex_;
     std::map<std::uint32_t, std::vector<std::uint8_t>> recorded_;  ///< encoded results, by tile
     // Last, so it is destroyed (its threads joined) before the scene its tasks use.

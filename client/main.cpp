@@ -25,6 +25,12 @@ int main(int argc, char** argv) {
     app.add_flag("--replay", options.replay,
                  "render each tile once, then resend that result whenever the tile is asked for "
                  "again (to measure how many pixels per second the master can take)");
+    app.add_option("--secret-file", options.secretFile, "the cluster secret (else IGI_SECRET)");
+    app.add_flag("--insecure", options.insecure,
+                 "join a master that runs without a secret (loopback tests)");
+    app.add_option("--reconnect-seconds", options.reconnectSeconds,
+                   "after losing the master, keep trying to reach it (again) this long; 0: exit")
+        ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
     spdlog::set_level(spdlog::level::from_str(logLevel));
@@ -39,8 +45,19 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        igi::ClientSession session(options);
-        return session.run();
+        for (;;) {
+            int code;
+            {
+                igi::ClientSession session(options);
+                code = session.run();
+            }
+            // A lost master (crashed, restarted, the network cut) is tried again with backoff:
+            // the next session connects anew, proves itself and gets the scene again.
+            if (code != igi::kLost || options.reconnectSeconds <= 0) return code;
+            spdlog::warn("lost the master; trying to reach it again for up to {:.0f} s",
+                         options.reconnectSeconds);
+            options.connectTimeoutSeconds = options.reconnectSeconds;
+        }
     } catch (const std::exception& e) {
         spdlog::error("{}", e.what());
         return 1;

@@ -26,7 +26,19 @@ std::string LocalClients::clientExecutableBesideSelf() {
 }
 
 void LocalClients::start(const std::string& executable, const std::vector<std::string>& arguments,
-                         int count) {
+                         int count, const std::vector<std::string>& environment) {
+    std::vector<std::string> env;
+    for (char** e = environ; *e; ++e) {
+        const std::string entry = *e;
+        const std::string name = entry.substr(0, entry.find('='));
+        bool replaced = false;
+        for (const auto& extra : environment) replaced |= extra.substr(0, extra.find('=')) == name;
+        if (!replaced) env.push_back(entry);
+    }
+    env.insert(env.end(), environment.begin(), environment.end());
+    std::vector<char*> envp;
+    for (auto& e : env) envp.push_back(e.data());
+    envp.push_back(nullptr);
     for (int i = 0; i < count; ++i) {
         std::vector<std::string> args{executable};
         args.insert(args.end(), arguments.begin(), arguments.end());
@@ -35,7 +47,7 @@ void LocalClients::start(const std::string& executable, const std::vector<std::s
         argv.push_back(nullptr);
         pid_t pid = 0;
         const int rc =
-            posix_spawn(&pid, executable.c_str(), nullptr, nullptr, argv.data(), environ);
+            posix_spawn(&pid, executable.c_str(), nullptr, nullptr, argv.data(), envp.data());
         if (rc != 0)
             throw std::runtime_error("cannot start " + executable + ": " + std::strerror(rc));
         spdlog::info("started local client {} (pid {})", i + 1, pid);

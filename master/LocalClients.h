@@ -16,8 +16,11 @@ class LocalClients {
     LocalClients(const LocalClients&) = delete;
     LocalClients& operator=(const LocalClients&) = delete;
 
-    /// Starts `count` clients of `executable` with `arguments`. Throws on failure.
-    void start(const std::string& executable, const std::vector<std::string>& arguments, int count);
+    /// Starts `count` clients of `executable` with `arguments` and this process's environment
+    /// plus `environment` ("NAME=value", replacing a variable of the same name): secrets go
+    /// there, not on the command line, where any user could read them. Throws on failure.
+    void start(const std::string& executable, const std::vector<std::string>& arguments, int count,
+               const std::vector<std::string>& environment = {});
 
     /// Waits up to `seconds` for all to exit, then kills the rest. Returns how many had to be
     /// killed.

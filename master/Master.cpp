@@ -21,9 +21,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr auto kTickPeriod = std::chrono::milliseconds(20);
-// A tile is copied to an idle client only after it has been out this long, and this many times
-// its holder's usual tile time: short enough to get past a stalled client, long enough not to
-// duplicate every tile at the end of a frame.
+// A tile is copied to an idle client only after it has been out at least this long (and three
+// times its holder's usual latency, see TileScheduler): short enough to get past a stalled
+// client, long enough not to duplicate every tile at the end of a frame.
 constexpr double kDuplicateAfterSeconds = 0.05;
 
 double secondsSince(Clock::time_point t) {
@@ -44,7 +44,9 @@ Master::~Master() = default;
 
 void Master::loadScene() {
     SceneBundle bundle;
-    scene_ = loadSceneFile(options_.scene, &bundle);
+    SceneLoadOptions loadOptions;
+    loadOptions.allowOutsidePaths = options_.allowOutsidePaths;
+    scene_ = loadSceneFile(options_.scene, &bundle, loadOptions);
     applyRenderSettingsJson(nlohmann::json::parse(options_.renderOverridesJson), scene_.render,
                             "command line", "/render");
     if (options_.width > 0) scene_.image.width = options_.width;
@@ -96,18 +98,32 @@ void Master::accept() {
             net::ConnectionOptions connectionOptions;
             connectionOptions.readTimeout =
                 std::chrono::milliseconds(long(options_.readTimeoutSeconds * 1000));
-            // Tile results are decoded on the pool, not on this thread.
+            // Tile results are decoded on the pool, not on this thread, and can be no bigger
+            // than the largest tile needs (under 16 bytes a pixel before compression).
             connectionOptions.undecodedTypes = {proto::MessageType::TileResult};
+            connectionOptions.payloadLimits = {
+                {proto::MessageType::TileResult, maxTileResultBytes()}};
+            if (int(sessions_.size()) >= options_.maxClients) {
+                auto turnedAway =
+                    std::make_shared<net::Connection>(std::move(socket), connectionOptions);
+                spdlog::warn("turning away {}: {} clients already", turnedAway->peer(),
+                             sessions_.size());
+                turnedAway->send(proto::Error{"the master is full (" +
+                                              std::to_string(options_.maxClients) + " clients)"},
+                                 0, 0);
+                turnedAway->closeAfterSending("master full");
+                return accept();
+            }
             const ClientId id = nextClientId_++;
             Session& s = sessions_[id];
             s.id = id;
+            s.connected = Clock::now();
+            s.nonce = net::ClusterKey::randomNonce();
             s.connection = std::make_shared<net::Connection>(std::move(socket), connectionOptions);
             stats_.client(id).peer = s.connection->peer();
             spdlog::info("client {} connected from {}", id, s.connection->peer());
             s.connection->start(
-                [this, id](const proto::Header& h, proto::Message m) {
-                    onMessage(id, h, std::move(m));
-                },
+                [this, id](const proto::Header& h, proto::Message m) { onMessage(id, h, m); },
                 [this, id](const std::string& reason) { onClose(id, reason); },
                 [this, id](const proto::Header& h, std::vector<std::uint8_t> payload) {
                     auto it = sessions_.find(id);
@@ -116,12 +132,15 @@ void Master::accept() {
                         return refuse(it->second, "a tile result before the scene was ready");
                     onTileResult(it->second, h, std::move(payload));
                 });
+            // First words: what this master runs, and a fresh nonce to prove the secret with.
+            s.connection->send(
+                proto::Challenge{proto::kVersion, IGI_BUILD_ID, key_.has_value(), s.nonce}, 0, 0);
         }
         accept();
     });
 }
 
-void Master::onMessage(ClientId id, const proto::Header& header, proto::Message message) {
+void Master::onMessage(ClientId id, const proto::Header& header, const proto::Message& message) {
     auto it = sessions_.find(id);
     if (it == sessions_.end() || ending_) return;
     Session& s = it->second;
@@ -150,13 +169,22 @@ void Master::onHello(Session& s, const proto::Hello& hello) {
     if (hello.buildId != IGI_BUILD_ID)
         return refuse(
             s, "client build " + hello.buildId + " does not match master build " IGI_BUILD_ID);
+    if (key_) {
+        // Nothing is given to a peer that cannot prove it holds the cluster secret.
+        if (!hello.proof ||
+            !net::ClusterKey::same(*hello.proof, key_->clientProof(s.nonce, hello.nonce)))
+            return refuse(s,
+                          "authentication failed: the client does not hold this cluster's secret");
+    }
     s.helloed = true;
     s.host = hello.hostname;
     s.threads = std::max(1u, hello.threads);
     ClientStats& c = stats_.client(s.id);
     c.host = hello.hostname;
     c.threads = hello.threads;
-    s.connection->send(proto::Welcome{s.id, scene_.render.seed}, 0, 0);
+    std::optional<proto::AuthBytes> proof;
+    if (key_) proof = key_->masterProof(s.nonce, hello.nonce);
+    s.connection->send(proto::Welcome{s.id, scene_.render.seed, proof}, 0, 0);
     // The scene as loaded, plus the changes that bring it to now; then every update that follows.
     sceneData_.changes = timeline_->changesSinceLoad();
     s.connection->send(sceneData_, 0, timeline_->epoch());
@@ -226,9 +254,7 @@ void Master::dispatch() {
         if (!s.ready || !s.connection->isOpen()) continue;
         while (scheduler_->inFlight(id) < depthFor(s)) {
             openFramesAsNeeded();
-            const double minAge = std::max(kDuplicateAfterSeconds,
-                                           s.tilesPerSecond > 0 ? 3.0 / s.tilesPerSecond : 0.0);
-            const auto a = scheduler_->next(id, minAge);
+            const auto a = scheduler_->next(id, kDuplicateAfterSeconds);
             if (!a) break;
             const Tile& t = scheduler_->layout()[a->tile];
             stats_.noteAssignment(a->frame, id, t.setIndex(scene_.render.interleaveX));
@@ -384,6 +410,13 @@ void Master::scheduleTick() {
     tick_.expires_after(kTickPeriod);
     tick_.async_wait([this](const boost::system::error_code& ec) {
         if (ec || ending_) return;
+        // A connection that has not proved itself in time is dropped: a slot and a socket
+        // are all an anonymous peer gets.
+        for (auto& [id, s] : sessions_)
+            if (!s.helloed && secondsSince(s.connected) > options_.handshakeSeconds &&
+                s.connection->isOpen())
+                refuse(s, "no valid Hello within " +
+                              std::to_string(int(options_.handshakeSeconds)) + " s");
         if (!started_ && secondsSince(created_) > options_.waitSeconds) {
             spdlog::error("only {} of {} clients were ready after {:.0f} s", readyClients(),
                           std::max(1, options_.localClients + options_.remoteClients),
@@ -439,7 +472,11 @@ void Master::endSession(int exitCode) {
 int Master::run() {
     try {
         loadScene();
+        setUpSecret();
     } catch (const SceneError& e) {
+        spdlog::error("{}", e.what());
+        return 2;
+    } catch (const std::invalid_argument& e) {
         spdlog::error("{}", e.what());
         return 2;
     }
@@ -470,8 +507,18 @@ int Master::run() {
                                          "--threads",   std::to_string(threads),
                                          "--log-level", options_.clientLogLevel};
         if (options_.replayClients) args.push_back("--replay");
-        localClients_.start(LocalClients::clientExecutableBesideSelf(), args,
-                            options_.localClients);
+        // They belong to this session: when it ends or this master dies, they go too.
+        args.insert(args.end(), {"--reconnect-seconds", "0"});
+        std::vector<std::string> environment;
+        if (options_.insecure) {
+            args.push_back("--insecure");
+        } else if (!localSecret_.empty()) {
+            environment.push_back("IGI_SECRET=" + localSecret_);
+        } else if (!options_.secretFile.empty()) {
+            args.insert(args.end(), {"--secret-file", options_.secretFile.string()});
+        }  // else: they inherit IGI_SECRET
+        localClients_.start(LocalClients::clientExecutableBesideSelf(), args, options_.localClients,
+                            environment);
     }
     scheduleTick();
     io_.run();
@@ -569,6 +616,42 @@ void Master::onControl(const std::string& line, ControlServer::Reply reply) {
             renderEnd_ = Clock::now();
             return endSession(0);
     }
+}
+
+}  // namespace igi
+
+namespace igi {
+
+std::uint32_t Master::maxTileResultBytes() const {
+    int largest = 0;
+    for (const Tile& t : scheduler_->layout())
+        largest =
+            std::max(largest, t.pixelCount(scene_.render.interleaveX, scene_.render.interleaveY));
+    return std::uint32_t(4096 + 32 * std::size_t(largest));
+}
+
+void Master::setUpSecret() {
+    key_ = net::clusterKeyFrom(options_.secretFile);  // --secret-file, else IGI_SECRET
+    const bool loopback = boost::asio::ip::make_address(options_.listenHost).is_loopback();
+    if (options_.insecure) {
+        if (!loopback)
+            throw std::invalid_argument("--insecure is for loopback only; listening on " +
+                                        options_.listenHost +
+                                        " needs a cluster secret (--secret-file or IGI_SECRET)");
+        spdlog::warn(
+            "INSECURE: no cluster secret; anything that reaches {}:{} may join and feed results",
+            options_.listenHost, options_.listenPort);
+        key_.reset();
+        return;
+    }
+    if (key_) return;  // local clients get the same --secret-file, or inherit IGI_SECRET
+    if (options_.remoteClients > 0 || !loopback)
+        throw std::invalid_argument(
+            "clients from the network need a cluster secret: --secret-file FILE or "
+            "IGI_SECRET (or --insecure, on loopback only)");
+    // Local clients only: a fresh secret of this session, handed to them in their environment.
+    localSecret_ = net::ClusterKey::randomSecret();
+    key_ = net::ClusterKey::fromSecret(localSecret_);
 }
 
 }  // namespace igi

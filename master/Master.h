@@ -21,6 +21,7 @@
 #include "SceneTimeline.h"
 #include "Statistics.h"
 #include "TileScheduler.h"
+#include "net/ClusterKey.h"
 #include "net/Connection.h"
 #include "render/FrameBuffer.h"
 #include "scene/Scene.h"
@@ -47,6 +48,8 @@ class Master {
     struct Session {
         ClientId id = 0;
         std::shared_ptr<net::Connection> connection;
+        proto::AuthBytes nonce{};  ///< this connection's challenge
+        std::chrono::steady_clock::time_point connected;
         bool helloed = false;
         bool sceneSent = false;  ///< it has the scene: it gets every update from now on
         bool ready = false;
@@ -64,9 +67,11 @@ class Master {
     };
 
     void loadScene();
+    void setUpSecret();
+    std::uint32_t maxTileResultBytes() const;
     void listen();
     void accept();
-    void onMessage(ClientId id, const proto::Header& header, proto::Message message);
+    void onMessage(ClientId id, const proto::Header& header, const proto::Message& message);
     void onClose(ClientId id, const std::string& reason);
     void onHello(Session& s, const proto::Hello& hello);
     void onSceneReady(Session& s, const proto::SceneReady& ready);
@@ -101,6 +106,8 @@ class Master {
     std::unique_ptr<TileScheduler> scheduler_;
     std::unique_ptr<FrameCompositor> compositor_;
     std::unique_ptr<SceneTimeline> timeline_;
+    std::optional<net::ClusterKey> key_;  ///< none: --insecure
+    std::string localSecret_;             ///< given to local clients through their environment
     std::unique_ptr<ControlServer> control_;
     boost::asio::signal_set signals_;
     std::int64_t compositedEpoch_ = -1;  ///< epoch of the frame last composited

@@ -22,12 +22,20 @@ struct MasterOptions {
     std::string listenHost = "127.0.0.1";
     std::uint16_t listenPort = 0;  ///< 0: any free port (fine when all clients are local)
     std::filesystem::path statsJson;
+    /// Scene files may name files outside the scene file's folder (docs/SCENE_FORMAT.md).
+    bool allowOutsidePaths = false;
     unsigned threads = 0;                 ///< master threads (0: every hardware thread)
     unsigned clientThreads = 0;           ///< threads of each local client (0: share the machine)
     double waitSeconds = 60;              ///< for the clients to connect and build the scene
     double readTimeoutSeconds = 30;       ///< a client silent this long is dropped
     std::string clientLogLevel = "info";  ///< passed to local clients
-    bool replayClients = false;  ///< local clients replay recorded tiles (igi-client --replay)
+    std::filesystem::path secretFile;     ///< the cluster secret (else IGI_SECRET, else see below)
+    /// No authentication: only allowed when listening on loopback. Without a secret and without
+    /// --insecure, a master with local clients only makes a random secret for them.
+    bool insecure = false;
+    int maxClients = 64;           ///< connections beyond this are turned away
+    double handshakeSeconds = 10;  ///< a connection must prove itself within this
+    bool replayClients = false;    ///< local clients replay recorded tiles (igi-client --replay)
     /// Render settings from the command line, as a JSON object in the scene file's "render"
     /// syntax (so both are validated the same way), plus image overrides.
     std::string renderOverridesJson = "{}";

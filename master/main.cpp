@@ -35,6 +35,8 @@ int main(int argc, char** argv) {
     std::string scene, listen, logLevel = "info";
     std::vector<std::string> outputs;
     app.add_option("--scene", scene, "scene file (.json) or a bare .obj")->required();
+    app.add_flag("--allow-outside-paths", o.allowOutsidePaths,
+                 "let the scene file name files outside its own folder (relative paths only)");
     app.add_option("--output", outputs,
                    "image to write at the end (.png tone-mapped, .exr linear); repeatable");
     app.add_option("--frames", o.frames,
@@ -114,6 +116,14 @@ int main(int argc, char** argv) {
         {"--seed", "seed", true, "session seed of every random bit vector"},
     };
     for (auto& n : numerics) n.option = app.add_option(n.flag, n.value, n.help);
+    app.add_option(
+        "--secret-file", o.secretFile,
+        "the cluster secret (else the IGI_SECRET environment variable; with local clients only, "
+        "a random one)");
+    app.add_flag("--insecure", o.insecure, "no authentication at all (loopback only; for tests)");
+    app.add_option("--max-clients", o.maxClients, "connections beyond this are turned away")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 4096));
     app.add_flag(
         "--replay-clients", o.replayClients,
         "local clients render each tile once and then resend it: measures the master's ceiling");

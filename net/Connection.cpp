@@ -76,6 +76,13 @@ void Connection::onHeader(const boost::system::error_code& ec, std::size_t n) {
     } catch (const proto::ProtocolError& e) {
         return closeNow(std::string("protocol error: ") + e.what(), CloseKind::Problem);
     }
+    for (const auto& [type, limit] : options_.payloadLimits)
+        if (header_.type == type && header_.payloadSize > limit)
+            return closeNow("protocol error: a " + std::to_string(header_.payloadSize) + "-byte " +
+                                proto::messageTypeName(type) +
+                                " exceeds this connection's limit of " + std::to_string(limit) +
+                                " bytes",
+                            CloseKind::Problem);
     // Only now, with the size checked against the type's limit, is memory taken for it.
     try {
         payload_.resize(header_.payloadSize);

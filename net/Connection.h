@@ -29,6 +29,9 @@ struct ConnectionOptions {
     /// Messages of these types reach the owner undecoded (RawHandler), so that it can decode
     /// them on other threads: the master decodes tile results on all its cores.
     std::vector<proto::MessageType> undecodedTypes;
+    /// Tighter payload limits than the protocol's, by type (the master knows how big a tile
+    /// result can be); checked with the header, before anything is allocated.
+    std::vector<std::pair<proto::MessageType, std::uint32_t>> payloadLimits;
 };
 
 /// One framed TCP connection, used by master and client alike (after Boost.Beast's session

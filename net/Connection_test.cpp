@@ -108,7 +108,7 @@ TEST(Connection, MessagesRoundTripBothWays) {
     serverInbox.start(*server);
     clientInbox.start(*client);
 
-    proto::Hello hello{proto::kVersion, "build-1", 8, "host-a"};
+    proto::Hello hello{proto::kVersion, "build-1", 8, "host-a", {}, std::nullopt};
     // A scene bigger than one read chunk, incompressible, so the payload arrives in pieces.
     proto::SceneData scene;
     scene.bundle.sceneName = "big.json";
@@ -117,7 +117,7 @@ TEST(Connection, MessagesRoundTripBothWays) {
     for (char& ch : noise) ch = static_cast<char>((x = x * 1664525u + 1013904223u) >> 24);
     scene.bundle.files["big.bin"] = noise;
     client->send(hello, 3, 4);
-    server->send(proto::Welcome{7, 99}, 5, 6);
+    server->send(proto::Welcome{7, 99, std::nullopt}, 5, 6);
     server->send(scene, 8, 9);
     client->send(proto::Heartbeat{}, 10, 11);
 
@@ -266,7 +266,7 @@ TEST(Connection, ThousandMessagesFromTwoThreadsArriveCompleteAndInOrder) {
 TEST(Connection, ReadTimeoutCloses) {
     Loop loop;
     auto [s, c] = socketPair(loop.io);
-    auto server = std::make_shared<Connection>(std::move(s), ConnectionOptions{100ms, {}});
+    auto server = std::make_shared<Connection>(std::move(s), ConnectionOptions{100ms, {}, {}});
     Inbox serverInbox;
     auto closed = serverInbox.closed.get_future();
     serverInbox.start(*server);
@@ -352,6 +352,32 @@ TEST(Connection, UndecodedTypesReachTheRawHandlerAndOthersAreDecoded) {
     const auto back = std::get<proto::TileResult>(proto::decodeMessage(header, payload));
     EXPECT_EQ(back.tileId, 17u);
     EXPECT_FLOAT_EQ(back.channels.unfiltered[1].y, 2.0f);
+}
+
+}  // namespace
+}  // namespace igi::net
+
+namespace igi::net {
+namespace {
+
+TEST(Connection, APerConnectionPayloadLimitClosesBeforeThePayloadIsRead) {
+    Loop loop(1);
+    auto [s, c] = socketPair(loop.io);
+    ConnectionOptions options;
+    options.payloadLimits = {{proto::MessageType::TileResult, 64}};
+    auto server = std::make_shared<Connection>(std::move(s), options);
+    auto client = std::make_shared<Connection>(std::move(c));
+    Inbox inbox;
+    auto closed = inbox.closed.get_future();
+    inbox.start(*server);
+    client->start([](const proto::Header&, proto::Message) {}, [](const std::string&) {});
+    proto::TileResult big;
+    big.channels.resize(1000, kUnfiltered);
+    for (std::size_t i = 0; i < big.channels.unfiltered.size(); ++i)
+        big.channels.unfiltered[i] = glm::vec3(float(i));
+    client->send(big, 0, 0);
+    ASSERT_TRUE(ready(closed));
+    EXPECT_NE(closed.get().find("exceeds this connection's limit of 64 bytes"), std::string::npos);
 }
 
 }  // namespace

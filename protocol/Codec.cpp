@@ -46,16 +46,31 @@ float readSeconds(ByteReader& in, const char* name) {
 
 // ---- encoders: one per message ----
 
+void writeProof(ByteWriter& out, const std::optional<AuthBytes>& proof) {
+    out.u8(proof ? 1 : 0);
+    if (proof) out.bytes(*proof);
+}
+
 void write(ByteWriter& out, const Hello& m) {
     out.u16(m.protocolVersion);
     out.string(m.buildId);
     out.u32(m.threads);
     out.string(m.hostname);
+    out.bytes(m.nonce);
+    writeProof(out, m.proof);
 }
 
 void write(ByteWriter& out, const Welcome& m) {
     out.u32(m.clientId);
     out.u64(m.sessionSeed);
+    writeProof(out, m.proof);
+}
+
+void write(ByteWriter& out, const Challenge& m) {
+    out.u16(m.protocolVersion);
+    out.string(m.buildId);
+    out.u8(m.secretRequired ? 1 : 0);
+    out.bytes(m.nonce);
 }
 
 void write(ByteWriter& out, const SceneData& m) {
@@ -106,6 +121,20 @@ void write(ByteWriter& out, const Error& m) {
 
 // ---- decoders: one per message ----
 
+AuthBytes readAuthBytes(ByteReader& in) {
+    AuthBytes b;
+    const auto raw = in.bytes(b.size());
+    std::copy(raw.begin(), raw.end(), b.begin());
+    return b;
+}
+
+std::optional<AuthBytes> readProof(ByteReader& in) {
+    const std::uint8_t present = in.u8();
+    if (present > 1) in.fail("proof flag is " + std::to_string(present) + ", expected 0 or 1");
+    if (!present) return std::nullopt;
+    return readAuthBytes(in);
+}
+
 Hello readHello(ByteReader& in) {
     Hello m;
     m.protocolVersion = in.u16();
@@ -115,6 +144,8 @@ Hello readHello(ByteReader& in) {
         in.fail("threads is " + std::to_string(m.threads) + ", expected at most " +
                 std::to_string(kMaxThreads));
     m.hostname = in.string();
+    m.nonce = readAuthBytes(in);
+    m.proof = readProof(in);
     return m;
 }
 
@@ -122,6 +153,19 @@ Welcome readWelcome(ByteReader& in) {
     Welcome m;
     m.clientId = in.u32();
     m.sessionSeed = in.u64();
+    m.proof = readProof(in);
+    return m;
+}
+
+Challenge readChallenge(ByteReader& in) {
+    Challenge m;
+    m.protocolVersion = in.u16();
+    m.buildId = in.string();
+    const std::uint8_t required = in.u8();
+    if (required > 1)
+        in.fail("secretRequired is " + std::to_string(required) + ", expected 0 or 1");
+    m.secretRequired = required == 1;
+    m.nonce = readAuthBytes(in);
     return m;
 }
 
@@ -207,6 +251,7 @@ std::uint32_t maxPayloadSize(MessageType type) {
         case MessageType::Welcome:
         case MessageType::SceneReady:
         case MessageType::TileAssign:
+        case MessageType::Challenge:
             return kSmallPayloadLimit;
         case MessageType::Heartbeat:
         case MessageType::Shutdown:
@@ -225,7 +270,7 @@ std::uint32_t maxPayloadSize(MessageType type) {
 
 bool isKnownType(std::uint16_t type) {
     return type >= static_cast<std::uint16_t>(MessageType::Hello) &&
-           type <= static_cast<std::uint16_t>(MessageType::SceneUpdate);
+           type <= static_cast<std::uint16_t>(MessageType::Challenge);
 }
 
 std::string messageTypeName(MessageType type) {
@@ -250,14 +295,16 @@ std::string messageTypeName(MessageType type) {
             return "Error";
         case MessageType::SceneUpdate:
             return "SceneUpdate";
+        case MessageType::Challenge:
+            return "Challenge";
     }
     return "type " + std::to_string(static_cast<unsigned>(type));
 }
 
 MessageType typeOf(const Message& message) {
     // The variant's alternatives are declared in the order of the type numbers.
-    static_assert(std::variant_size_v<Message> == 10);
-    static_assert(std::is_same_v<std::variant_alternative_t<9, Message>, SceneUpdate>);
+    static_assert(std::variant_size_v<Message> == 11);
+    static_assert(std::is_same_v<std::variant_alternative_t<10, Message>, Challenge>);
     return static_cast<MessageType>(message.index() + 1);
 }
 
@@ -365,6 +412,9 @@ Message decodeMessage(const Header& header, std::span<const std::uint8_t> payloa
             break;
         case MessageType::SceneUpdate:
             m = readSceneUpdate(in);
+            break;
+        case MessageType::Challenge:
+            m = readChallenge(in);
             break;
     }
     in.expectEnd();

@@ -25,10 +25,19 @@ void expectSame(const Hello& a, const Hello& b) {
     EXPECT_EQ(a.buildId, b.buildId);
     EXPECT_EQ(a.threads, b.threads);
     EXPECT_EQ(a.hostname, b.hostname);
+    EXPECT_EQ(a.nonce, b.nonce);
+    EXPECT_EQ(a.proof, b.proof);
 }
 void expectSame(const Welcome& a, const Welcome& b) {
     EXPECT_EQ(a.clientId, b.clientId);
     EXPECT_EQ(a.sessionSeed, b.sessionSeed);
+    EXPECT_EQ(a.proof, b.proof);
+}
+void expectSame(const Challenge& a, const Challenge& b) {
+    EXPECT_EQ(a.protocolVersion, b.protocolVersion);
+    EXPECT_EQ(a.buildId, b.buildId);
+    EXPECT_EQ(a.secretRequired, b.secretRequired);
+    EXPECT_EQ(a.nonce, b.nonce);
 }
 void expectSame(const SceneData& a, const SceneData& b) {
     EXPECT_EQ(a.bundle.sceneName, b.bundle.sceneName);
@@ -216,10 +225,10 @@ TEST(Codec, HeaderRejectsUnknownTypes) {
     EXPECT_EQ(headerError(h), "unknown message type 77");
     h[6] = 0;
     EXPECT_EQ(headerError(h), "unknown message type 0");
+    h[6] = 12;
+    EXPECT_EQ(headerError(h), "unknown message type 12");
     h[6] = 11;
-    EXPECT_EQ(headerError(h), "unknown message type 11");
-    h[6] = 10;
-    EXPECT_EQ(headerError(h), "(no error)");  // SceneUpdate
+    EXPECT_EQ(headerError(h), "(no error)");  // Challenge
 }
 
 TEST(Codec, HeaderRejectsNonZeroReserved) {
@@ -618,6 +627,32 @@ TEST(Codec, RewritingFrameAndEpochOfAnEncodedMessage) {
     EXPECT_EQ(std::get<TileResult>(decodeMessage(h, std::span(bytes).subspan(kHeaderSize))).tileId,
               5u);
     EXPECT_THROW(peekTileId(std::span<const std::uint8_t>(bytes.data(), 3)), ProtocolError);
+}
+
+}  // namespace
+}  // namespace igi::proto
+
+namespace igi::proto {
+namespace {
+
+TEST(Codec, HandshakeMessagesWithoutProofsRoundTripAndBadFlagsAreRefused) {
+    Hello hello = test::sampleHello();
+    hello.proof.reset();
+    const auto bytes = encodePayload(hello);
+    Header h;
+    h.type = MessageType::Hello;
+    h.payloadSize = std::uint32_t(bytes.size());
+    EXPECT_FALSE(std::get<Hello>(decodeMessage(h, bytes)).proof.has_value());
+    auto bad = bytes;
+    bad[bad.size() - 1] = 2;  // the proof flag
+    EXPECT_THROW(decodeMessage(h, bad), ProtocolError);
+
+    Challenge challenge = test::sampleChallenge();
+    auto c = encodePayload(challenge);
+    h.type = MessageType::Challenge;
+    h.payloadSize = std::uint32_t(c.size());
+    c[c.size() - 33] = 7;  // secretRequired
+    EXPECT_THROW(decodeMessage(h, c), ProtocolError);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <variant>
@@ -36,7 +38,11 @@ enum class MessageType : std::uint16_t {
     Shutdown = 8,      ///< master -> client: the session is over, exit
     Error = 9,         ///< either way: a reason, then the sender closes
     SceneUpdate = 10,  ///< master -> client: changes that make the header's epoch
+    Challenge = 11,    ///< master -> client, first message: a nonce to prove the secret with
 };
+
+/// Nonces and proofs of the handshake (HMAC-SHA256 outputs, net/ClusterKey.h).
+using AuthBytes = std::array<std::uint8_t, 32>;
 
 struct Header {
     std::uint16_t version = kVersion;
@@ -46,16 +52,31 @@ struct Header {
     std::uint32_t payloadSize = 0;
 };
 
+/// The client's answer to a Challenge: who it is, its own nonce, and (unless the cluster runs
+/// without a secret) its proof of the secret over both nonces.
 struct Hello {
     std::uint16_t protocolVersion = kVersion;
     std::string buildId;
     std::uint32_t threads = 0;
     std::string hostname;
+    AuthBytes nonce{};
+    std::optional<AuthBytes> proof;
 };
 
+/// The master's acceptance, with its own proof of the secret over both nonces, so a client
+/// knows it talks to its cluster's master before it takes any work from it.
 struct Welcome {
     std::uint32_t clientId = 0;
     std::uint64_t sessionSeed = 0;
+    std::optional<AuthBytes> proof;
+};
+
+/// The master's first words to a new connection: what it runs and a fresh nonce.
+struct Challenge {
+    std::uint16_t protocolVersion = kVersion;
+    std::string buildId;
+    bool secretRequired = true;  ///< false only for a master run with --insecure
+    AuthBytes nonce{};
 };
 
 /// The scene as files (so a client parses the same bytes as the master) plus what the master's
@@ -115,6 +136,6 @@ struct Error {
 
 /// In the order of the type numbers: typeOf(m) is m.index() + 1.
 using Message = std::variant<Hello, Welcome, SceneData, SceneReady, TileAssign, TileResult,
-                             Heartbeat, Shutdown, Error, SceneUpdate>;
+                             Heartbeat, Shutdown, Error, SceneUpdate, Challenge>;
 
 }  // namespace igi::proto

@@ -13,11 +13,20 @@ namespace igi::proto::test {
 
 /// One message of every type with every field set away from its default, so that a codec
 /// that forgets or swaps a field fails the round trip.
+inline AuthBytes sampleAuthBytes(std::uint8_t first) {
+    AuthBytes b;
+    for (std::size_t i = 0; i < b.size(); ++i) b[i] = std::uint8_t(first + 7 * i);
+    return b;
+}
 inline Hello sampleHello() {
-    return {kVersion, "0.1.0-abc123", 12, "render-07.local"};
+    return {kVersion,          "0.1.0-abc123",     12,
+            "render-07.local", sampleAuthBytes(3), sampleAuthBytes(99)};
 }
 inline Welcome sampleWelcome() {
-    return {42, 0x0123456789ABCDEFull};
+    return {42, 0x0123456789ABCDEFull, sampleAuthBytes(17)};
+}
+inline Challenge sampleChallenge() {
+    return {kVersion, "0.1.0-abc123", true, sampleAuthBytes(201)};
 }
 
 /// One change of every kind, each field away from its default (names and the texture are not
@@ -146,9 +155,9 @@ inline Error sampleError() {
 }
 
 inline std::vector<Message> sampleMessages() {
-    return {sampleHello(),      sampleWelcome(),    sampleSceneData(), sampleSceneReady(),
-            sampleTileAssign(), sampleTileResult(), Heartbeat{},       Shutdown{},
-            sampleError(),      sampleSceneUpdate()};
+    return {sampleHello(),      sampleWelcome(),     sampleSceneData(), sampleSceneReady(),
+            sampleTileAssign(), sampleTileResult(),  Heartbeat{},       Shutdown{},
+            sampleError(),      sampleSceneUpdate(), sampleChallenge()};
 }
 
 }  // namespace igi::proto::test

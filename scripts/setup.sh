@@ -9,7 +9,7 @@ packages=(
   cmake g++ make pkg-config git
   libembree-dev libopenimageio-dev libglm-dev libboost-dev libzstd-dev
   nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev libcli11-dev libspdlog-dev
-  libgtest-dev
+  libgtest-dev libsodium-dev
   "$@"
 )
 

@@ -117,6 +117,33 @@ TEST(EndToEnd, ABadSceneFileIsAClearErrorAndANonZeroExit) {
     fs::remove_all(dir);
 }
 
+TEST(EndToEnd, AScenePathOutsideTheScenesFolderNeedsAllowOutsidePaths) {
+    const fs::path dir = scratchDir("outside");
+    fs::create_directories(dir / "scene");
+    std::ofstream(dir / "floor.obj") << "v -1 0 -1\nv 1 0 -1\nv 0 0 1\nf 1 3 2\n";
+    std::ofstream(dir / "scene" / "s.json")
+        << R"({"camera": {"position": [0, 2, 3], "look_at": [0, 0, 0], "up": [0, 1, 0],
+                          "fov_y": 45},
+              "image": {"width": 16, "height": 16},
+              "meshes": [{"file": "../floor.obj"}],
+              "lights": [{"type": "point", "position": [0, 1, 0], "intensity": [1, 1, 1]}]})";
+    const std::vector<std::string> args = {
+        "--scene",  (dir / "scene" / "s.json").string(), "--local-clients", "1", "--frames", "1",
+        "--output", (dir / "out.exr").string()};
+    const ProcessResult refused = runMaster(dir, "refused", args, 60);
+    EXPECT_NE(refused.exitCode, 0);
+    EXPECT_NE(refused.output.find("leaves the scene's folder"), std::string::npos)
+        << refused.output;
+    EXPECT_FALSE(fs::exists(dir / "out.exr"));
+
+    auto allowed = args;
+    allowed.push_back("--allow-outside-paths");
+    const ProcessResult r = runMaster(dir, "allowed", allowed, 120);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    expectFinite(readImage(dir / "out.exr"), "out.exr");
+    fs::remove_all(dir);
+}
+
 TEST(EndToEnd, ABareObjFromAnotherFolderRendersWithoutASharedDisk) {
     // The clients get every byte from the master; the OBJ's MTL is found next to it.
     const fs::path obj = sourceDir() / "../shared/scenes/cornell-box/CornellBox-Original.obj";

@@ -101,10 +101,13 @@ TEST(Runtime, AClientKilledMidFrameLosesNothing) {
 TEST(Runtime, AClientJoiningMidSessionGetsWorkInTheNextFrames) {
     const fs::path dir = scratchDir("join");
     // Until stopped: however slow the machine, the session outlives the join.
+    // A client from outside the master's own process tree: it must hold the cluster secret.
+    const fs::path secret = dir / "secret";
+    std::ofstream(secret) << "the render cluster's shared secret\n";
     auto args = sceneArgs(0);
-    args.insert(args.end(),
-                {"--local-clients", "1", "--output", (dir / "joined.exr").string(), "--stats-json",
-                 (dir / "stats.json").string(), "--control", "127.0.0.1:0"});
+    args.insert(args.end(), {"--local-clients", "1", "--output", (dir / "joined.exr").string(),
+                             "--stats-json", (dir / "stats.json").string(), "--control",
+                             "127.0.0.1:0", "--secret-file", secret.string()});
     const fs::path log = dir / "master.log";
     const pid_t master = spawnProcess(masterCommand(args), log);
     ASSERT_GT(master, 0);
@@ -118,9 +121,10 @@ TEST(Runtime, AClientJoiningMidSessionGetsWorkInTheNextFrames) {
     const std::string controlPort = control[1].str();
     ASSERT_FALSE(waitForLine(log, std::regex(R"(frame +3:)"), master).empty()) << readFile(log);
 
-    const pid_t joiner = spawnProcess(
-        {(binDir() / "igi-client").string(), "--connect", "127.0.0.1:" + port, "--threads", "1"},
-        dir / "joiner.log");
+    const pid_t joiner =
+        spawnProcess({(binDir() / "igi-client").string(), "--connect", "127.0.0.1:" + port,
+                      "--threads", "1", "--secret-file", secret.string()},
+                     dir / "joiner.log");
     ASSERT_GT(joiner, 0);
     const auto ready = waitForLine(log, std::regex(R"(client 2 \(.*\) is ready)"), master);
     ASSERT_FALSE(ready.empty()) << "the joiner was never ready:\n"

@@ -95,7 +95,10 @@ int main(int argc, char** argv) {
     unsigned threads = 0;
     std::size_t segments = 4'000'000;
     int frames = 4, width = 0, height = 0;
+    bool allowOutsidePaths = false;
     app.add_option("--scene", sceneFile, "scene file or .obj")->required();
+    app.add_flag("--allow-outside-paths", allowOutsidePaths,
+                 "let the scene file name files outside its own folder");
     app.add_option("--threads", threads, "threads for both measurements (0: all)")
         ->capture_default_str();
     app.add_option("--segments", segments, "random shadow segments for the raw measurement")
@@ -106,7 +109,9 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     spdlog::set_level(spdlog::level::warn);
     try {
-        igi::Scene scene = igi::loadSceneFile(sceneFile);
+        igi::SceneLoadOptions loadOptions;
+        loadOptions.allowOutsidePaths = allowOutsidePaths;
+        igi::Scene scene = igi::loadSceneFile(sceneFile, loadOptions);
         if (width > 0) scene.image.width = width;
         if (height > 0) scene.image.height = height;
         igi::ThreadPool pool(threads > 0 ? threads : igi::ThreadPool::defaultThreads());
