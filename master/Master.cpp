@@ -372,6 +372,7 @@ void Master::onComposited(std::uint32_t f, double seconds) {
     fs.seconds = secondsSince(frames_.at(f)->opened);
     fs.epoch = frames_.at(f)->epoch;
     fs.accumulated = std::uint32_t(compositor_->accumulatedFrames());
+    fs.shown = true;
     stats_.noteFrameDone(secondsSince(created_));
     spdlog::info("{}", stats_.summaryLine(f));
     writeFrameImages(f);
@@ -416,7 +417,7 @@ void Master::scheduleTick() {
             if (!s.helloed && secondsSince(s.connected) > options_.handshakeSeconds &&
                 s.connection->isOpen())
                 refuse(s, "no valid Hello within " +
-                              std::to_string(int(options_.handshakeSeconds)) + " s");
+                              fmt::format("{:g}", options_.handshakeSeconds) + " s");
         if (!started_ && secondsSince(created_) > options_.waitSeconds) {
             spdlog::error("only {} of {} clients were ready after {:.0f} s", readyClients(),
                           std::max(1, options_.localClients + options_.remoteClients),

@@ -64,7 +64,9 @@ double Statistics::recentFps() const {
 }
 
 double Statistics::fps(double totalSeconds) const {
-    return totalSeconds > 0 ? double(frames_.size()) / totalSeconds : 0.0;
+    std::size_t shown = 0;
+    for (const auto& [index, f] : frames_) shown += f.shown;
+    return totalSeconds > 0 ? double(shown) / totalSeconds : 0.0;
 }
 
 std::string Statistics::summaryLine(std::uint32_t index) const {
@@ -88,6 +90,7 @@ void Statistics::writeJson(const std::filesystem::path& path,
     const double totalSeconds = renderEnd - renderStart;
     nlohmann::json frames = nlohmann::json::array();
     for (const auto& [index, f] : frames_) {
+        if (!f.shown) continue;
         frames.push_back(
             {{"index", f.index},
              {"seconds", f.seconds},

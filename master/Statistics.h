@@ -30,6 +30,9 @@ struct FrameStats {
     std::uint32_t setsBuilt = 0;
     double vplsPerSet = 0;     ///< mean over the frame's tiles
     double photonsPerSet = 0;  ///< mean over the frame's tiles
+    /// Composited and shown. A session stopped mid-frame leaves frames that were in flight
+    /// (with tiles counted): they are not reported as frames.
+    bool shown = false;
 };
 
 /// What one client did over the session.

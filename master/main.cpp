@@ -124,6 +124,10 @@ int main(int argc, char** argv) {
     app.add_option("--max-clients", o.maxClients, "connections beyond this are turned away")
         ->capture_default_str()
         ->check(CLI::Range(1, 4096));
+    app.add_option("--handshake-timeout", o.handshakeSeconds,
+                   "seconds a new connection has to prove it holds the secret")
+        ->capture_default_str()
+        ->check(CLI::Range(0.5, 3600.0));
     app.add_flag(
         "--replay-clients", o.replayClients,
         "local clients render each tile once and then resend it: measures the master's ceiling");

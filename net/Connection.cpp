@@ -70,7 +70,6 @@ void Connection::onHeader(const boost::system::error_code& ec, std::size_t n) {
     if (closed_) return;
     bytesReceived_ += n;
     if (ec) return onReadError(ec, n == 0, "header");
-    restartReadDeadline();
     try {
         header_ = proto::decodeHeader(headerBytes_);
     } catch (const proto::ProtocolError& e) {
@@ -83,6 +82,13 @@ void Connection::onHeader(const boost::system::error_code& ec, std::size_t n) {
                                 " exceeds this connection's limit of " + std::to_string(limit) +
                                 " bytes",
                             CloseKind::Problem);
+    const double allowed =
+        std::chrono::duration<double>(options_.readTimeout).count() +
+        double(header_.payloadSize) / double(std::max<std::size_t>(1, options_.minBytesPerSecond));
+    messageDeadline_ = std::chrono::steady_clock::now() +
+                       std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                           std::chrono::duration<double>(allowed));
+    restartReadDeadline();
     // Only now, with the size checked against the type's limit, is memory taken for it.
     try {
         payload_.resize(header_.payloadSize);
@@ -115,6 +121,7 @@ void Connection::onPayloadChunk(const boost::system::error_code& ec, std::size_t
 }
 
 void Connection::deliver() {
+    messageDeadline_.reset();
     const auto& raw = options_.undecodedTypes;
     if (onRaw_ && std::find(raw.begin(), raw.end(), header_.type) != raw.end()) {
         ++messagesReceived_;
@@ -159,6 +166,8 @@ void Connection::onReadError(const boost::system::error_code& ec, bool atMessage
 
 void Connection::restartReadDeadline() {
     readDeadline_.expires_after(options_.readTimeout);
+    if (messageDeadline_ && *messageDeadline_ < readDeadline_.expiry())
+        readDeadline_.expires_at(*messageDeadline_);
 }
 
 void Connection::waitForReadDeadline() {
@@ -167,7 +176,14 @@ void Connection::waitForReadDeadline() {
     readDeadline_.async_wait(boost::asio::bind_executor(
         strand_, [self = shared_from_this()](const boost::system::error_code&) {
             if (self->closed_) return;
-            if (self->readDeadline_.expiry() <= boost::asio::steady_timer::clock_type::now())
+            const auto now = boost::asio::steady_timer::clock_type::now();
+            if (self->messageDeadline_ && *self->messageDeadline_ <= now)
+                return self->closeNow(
+                    "too slow: a " + std::to_string(self->header_.payloadSize) + "-byte " +
+                        proto::messageTypeName(self->header_.type) +
+                        " payload still incomplete at its deadline (the peer trickles bytes)",
+                    CloseKind::Problem);
+            if (self->readDeadline_.expiry() <= now)
                 return self->closeNow(
                     "read timeout: nothing received for " + seconds(self->options_.readTimeout),
                     CloseKind::Problem);

@@ -7,6 +7,7 @@
 #include <deque>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,10 @@ struct ConnectionOptions {
     /// Tighter payload limits than the protocol's, by type (the master knows how big a tile
     /// result can be); checked with the header, before anything is allocated.
     std::vector<std::pair<proto::MessageType, std::uint32_t>> payloadLimits;
+    /// A message, once its header is in, must be complete within readTimeout plus its size at
+    /// this rate: a peer that trickles a byte now and then (each byte restarting the read
+    /// timeout) to hold a connection and its buffer is dropped.
+    std::size_t minBytesPerSecond = 64 * 1024;
 };
 
 /// One framed TCP connection, used by master and client alike (after Boost.Beast's session
@@ -117,6 +122,8 @@ class Connection : public std::enable_shared_from_this<Connection> {
     std::array<std::uint8_t, proto::kHeaderSize> headerBytes_{};
     proto::Header header_;
     std::vector<std::uint8_t> payload_;
+    /// When the message being read must be complete; none between messages.
+    std::optional<std::chrono::steady_clock::time_point> messageDeadline_;
     std::deque<std::vector<std::uint8_t>> writeQueue_;
     bool writing_ = false;
     bool closeWhenDrained_ = false;

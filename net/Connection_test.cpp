@@ -150,6 +150,12 @@ TEST(Connection, MessagesRoundTripBothWays) {
     EXPECT_EQ(client->messagesReceived(), 2u);
     EXPECT_EQ(server->messagesReceived(), 2u);
     EXPECT_GT(client->bytesReceived(), 3u << 20);  // the scene is incompressible
+    // A sender counts its bytes when its write completes, which may be after the peer has
+    // read them: wait for the counters to settle.
+    for (auto waited = 0ms; waited < kPatience && (client->bytesReceived() != server->bytesSent() ||
+                                                   server->bytesReceived() != client->bytesSent());
+         waited += 10ms)
+        std::this_thread::sleep_for(10ms);
     EXPECT_EQ(client->bytesReceived(), server->bytesSent());
     EXPECT_EQ(server->bytesReceived(), client->bytesSent());
     EXPECT_TRUE(server->isOpen());
@@ -378,6 +384,45 @@ TEST(Connection, APerConnectionPayloadLimitClosesBeforeThePayloadIsRead) {
     client->send(big, 0, 0);
     ASSERT_TRUE(ready(closed));
     EXPECT_NE(closed.get().find("exceeds this connection's limit of 64 bytes"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace igi::net
+
+namespace igi::net {
+namespace {
+
+TEST(Connection, APeerThatTricklesAMessageIsDroppedThoughEachByteBeatsTheReadTimeout) {
+    Loop loop(1);
+    auto [s, c] = socketPair(loop.io);
+    ConnectionOptions options;
+    options.readTimeout = 200ms;
+    options.minBytesPerSecond = 10000;
+    auto server = std::make_shared<Connection>(std::move(s), options);
+    Inbox inbox;
+    auto closed = inbox.closed.get_future();
+    inbox.start(*server);
+
+    proto::TileResult result;
+    result.channels.resize(1000, kUnfiltered);
+    for (std::size_t i = 0; i < result.channels.unfiltered.size(); ++i)
+        result.channels.unfiltered[i] = glm::vec3(float(i));
+    const std::vector<std::uint8_t> bytes = proto::encodeMessage(result, 0, 0);
+    // The whole header at once, then the payload a byte every 20 ms: never silent for 200 ms,
+    // but far below 10 kB/s.
+    boost::asio::write(c, boost::asio::buffer(bytes.data(), proto::kHeaderSize));
+    const auto start = std::chrono::steady_clock::now();
+    std::string reason;
+    for (std::size_t i = proto::kHeaderSize; i < bytes.size(); ++i) {
+        if (closed.wait_for(20ms) == std::future_status::ready) break;
+        boost::system::error_code ec;
+        boost::asio::write(c, boost::asio::buffer(&bytes[i], 1), ec);
+        if (ec || std::chrono::steady_clock::now() - start > kPatience) break;
+    }
+    ASSERT_TRUE(ready(closed)) << "the trickling peer was never dropped";
+    reason = closed.get();
+    EXPECT_EQ(reason.rfind("too slow", 0), 0u) << reason;
+    EXPECT_TRUE(inbox.messages.empty());
 }
 
 }  // namespace

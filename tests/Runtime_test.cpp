@@ -8,51 +8,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "Process.h"
-#include "image/ImageIO.h"
+#include "Session.h"
 
 namespace igi {
 namespace {
 
 using namespace igi::testing;
 namespace fs = std::filesystem;
-
-std::vector<std::string> masterCommand(const std::vector<std::string>& args) {
-    std::vector<std::string> command = {(binDir() / "igi-master").string()};
-    command.insert(command.end(), args.begin(), args.end());
-    return command;
-}
-
-std::vector<std::string> sceneArgs(int frames) {
-    return {"--scene",     (sourceDir() / "scenes/cornell/cornell.json").string(),
-            "--width",     "160",
-            "--height",    "120",
-            "--frames",    std::to_string(frames),
-            "--listen",    "127.0.0.1:0",
-            "--log-level", "info"};
-}
-
-/// Waits until `log` contains a match of `pattern` (or the process ended); returns the match.
-std::smatch waitForLine(const fs::path& log, const std::regex& pattern, pid_t pid,
-                        double seconds = 60) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    static std::string text;  // the match refers into it
-    while (std::chrono::steady_clock::now() < deadline) {
-        text = readFile(log);
-        std::smatch m;
-        if (std::regex_search(text, m, pattern)) return m;
-        if (kill(pid, 0) != 0) break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    return {};
-}
-
-void expectSameImage(const fs::path& a, const fs::path& b) {
-    const Image x = readImage(a), y = readImage(b);
-    ASSERT_EQ(x.pixels.size(), y.pixels.size());
-    for (std::size_t i = 0; i < x.pixels.size(); ++i)
-        ASSERT_EQ(x.pixels[i], y.pixels[i]) << a << " and " << b << " differ at pixel " << i;
-}
 
 TEST(Runtime, OneTwoAndFourClientsGiveTheSamePixels) {
     const fs::path dir = scratchDir("clients");
