@@ -3,6 +3,7 @@
 // statistics.
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
+#include <boost/asio/ip/address.hpp>
 #include <nlohmann/json.hpp>
 
 #include "Master.h"
@@ -174,6 +175,15 @@ int main(int argc, char** argv) {
             o.control = true;
             o.controlHost = hp.host;
             o.controlPort = hp.port;
+            // Control commands are not authenticated (docs/SECURITY.md): whoever reaches the
+            // port can stop the session or move the scene, so it stays on this machine.
+            boost::system::error_code ec;
+            const auto address = boost::asio::ip::make_address(hp.host, ec);
+            if (hp.host != "localhost" && (ec || !address.is_loopback()))
+                throw std::invalid_argument(
+                    "--control " + control +
+                    ": control commands are not authenticated, so the control port listens on "
+                    "loopback only (reach it from elsewhere through an SSH tunnel)");
         }
         if (!o.outputSequence.empty()) igi::checkSequencePattern(o.outputSequence);
     } catch (const std::invalid_argument& e) {

@@ -177,7 +177,7 @@ TEST(Security, AClientTakesNothingFromAMasterThatCannotProveTheSecret) {
     if (!HasFailure()) fs::remove_all(dir);
 }
 
-TEST(Security, AFullMasterTurnsNewcomersAwayAndInsecureStaysOnLoopback) {
+TEST(Security, AFullMasterTurnsNewcomersAwayAndInsecureAndControlStayOnLoopback) {
     const fs::path dir = scratchDir("limits");
     OpenSession session(dir, {"--local-clients", "1", "--max-clients", "1"});
     ASSERT_TRUE(session.started()) << readFile(session.log);
@@ -195,6 +195,13 @@ TEST(Security, AFullMasterTurnsNewcomersAwayAndInsecureStaysOnLoopback) {
     const ProcessResult r = runProcess(masterCommand(args), dir / "insecure.log", 60);
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.output.find("--insecure is for loopback only"), std::string::npos) << r.output;
+
+    // The control port has no authentication of its own: never off this machine.
+    auto controlled = sceneArgs(1);
+    controlled.insert(controlled.end(), {"--control", "0.0.0.0:0", "--local-clients", "1"});
+    const ProcessResult c = runProcess(masterCommand(controlled), dir / "control.log", 60);
+    EXPECT_NE(c.exitCode, 0);
+    EXPECT_NE(c.output.find("loopback only"), std::string::npos) << c.output;
     if (!HasFailure()) fs::remove_all(dir);
 }
 
