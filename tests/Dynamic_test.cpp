@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "Process.h"
+#include "Session.h"
 #include "image/ImageIO.h"
 #include "math/Color.h"
 
@@ -58,7 +58,7 @@ nlohmann::json renderSequence(const fs::path& dir, const std::string& animation,
 Image frameImage(const fs::path& dir, int frame) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%02d.exr", frame);
-    return readImage(dir / name);
+    return readFiniteImage(dir / name);
 }
 
 /// Fraction of red pixels (the box) in a square window around (px, py).
@@ -236,7 +236,8 @@ TEST(Dynamic, ControlCommandsMoveTheSceneWhileItRenders) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     ASSERT_EQ(waitProcess(master, 60), 0) << readFile(log);
 
-    const Image before = readImage(dir / "before.exr"), after = readImage(dir / "after.exr");
+    const Image before = readFiniteImage(dir / "before.exr"),
+                after = readFiniteImage(dir / "after.exr");
     EXPECT_GT(redFraction(before, kLeftBox, kBoxRow, 2), 0.9);
     EXPECT_EQ(redFraction(after, kLeftBox, kBoxRow, 4), 0.0);
     const glm::vec3 box = after.at(kRightBox, kBoxRow);

@@ -64,6 +64,17 @@ inline std::smatch waitForLine(const std::filesystem::path& log, const std::rege
     return {};
 }
 
+/// Reads an image a test produced; a NaN or infinite pixel fails the test.
+inline Image readFiniteImage(const std::filesystem::path& path) {
+    Image image = readImage(path);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        if (!isFinite(image.pixels[i])) {
+            ADD_FAILURE() << path << " has a NaN or infinite value at pixel " << i;
+            break;
+        }
+    return image;
+}
+
 /// Both images exist, hold only finite values and are identical, pixel for pixel.
 inline void expectSameImage(const std::filesystem::path& a, const std::filesystem::path& b) {
     const Image x = readImage(a), y = readImage(b);
