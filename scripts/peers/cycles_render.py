@@ -1,0 +1,203 @@
+"""Renders an igi scene with Blender Cycles (CPU), headless, to linear OpenEXR.
+
+Usage:
+  blender -b --factory-startup -P scripts/peers/cycles_render.py -- \
+      SCENE OUT_PREFIX WIDTH HEIGHT THREADS SPP [SPP ...]
+
+Writes OUT_PREFIX-<spp>spp.exr for every sample count, and OUT_PREFIX.json with the render time
+of each (seconds spent in bpy.ops.render.render, i.e. scene sync, BVH build and path tracing;
+Blender's own start-up is measured separately as "startup_seconds").
+
+The scene is flattened by igi_scene.py (our transforms and MTL interpretation), then rebuilt
+with explicit Cycles shaders so that materials mean the same thing in both renderers:
+  diffuse -> Diffuse BSDF (roughness 0 = Lambert); mirror -> Glossy BSDF "Sharp" (+ diffuse);
+  glass -> Glass BSDF "Sharp" with our IOR and white tint; glossy -> Diffuse + Glossy (GGX with
+  roughness from the Phong exponent: an approximation); emission -> Emission on the front face
+  only (Cycles emits from both sides; we do not), plus the diffuse part.
+Film: box pixel filter of 1 pixel (each sample uniform in its pixel, as ours), no denoising, no
+adaptive sampling, no clamping, no filter-glossy, caustics on, 16 bounces like our reference.
+Colour: EXR is written scene-linear (no view transform); Blender's working space is linear
+Rec.709, as ours.
+"""
+
+import json
+import os
+import sys
+import time
+
+START = time.time()
+import bpy  # noqa: E402
+
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import igi_scene  # noqa: E402
+
+
+def _rgba(c):
+    return (c[0], c[1], c[2], 1.0)
+
+
+def _material(name, mat):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    nodes, links = m.node_tree.nodes, m.node_tree.links
+    nodes.clear()
+    out = nodes.new("ShaderNodeOutputMaterial")
+
+    def diffuse():
+        d = nodes.new("ShaderNodeBsdfDiffuse")
+        d.inputs["Color"].default_value = _rgba(mat["diffuse"])
+        d.inputs["Roughness"].default_value = 0.0
+        return d.outputs[0]
+
+    def add(a, b):
+        n = nodes.new("ShaderNodeAddShader")
+        links.new(a, n.inputs[0])
+        links.new(b, n.inputs[1])
+        return n.outputs[0]
+
+    kind = mat["type"]
+    if kind == "glass":
+        g = nodes.new("ShaderNodeBsdfGlass")
+        g.distribution = "SHARP"
+        g.inputs["Color"].default_value = (1, 1, 1, 1)
+        g.inputs["IOR"].default_value = mat["ior"]
+        surface = g.outputs[0]
+    elif kind in ("mirror", "glossy"):
+        g = nodes.new("ShaderNodeBsdfGlossy")
+        if kind == "mirror":
+            g.distribution = "SHARP"
+        else:
+            g.distribution = "GGX"
+            # Phong exponent n ~ 2 / alpha^2 - 2 (Walter et al. 2007), alpha = roughness^2.
+            alpha = (2.0 / (mat.get("phong_exponent", 10.0) + 2.0)) ** 0.5
+            g.inputs["Roughness"].default_value = alpha ** 0.5
+        g.inputs["Color"].default_value = _rgba(mat["specular"])
+        surface = add(diffuse(), g.outputs[0]) if max(mat["diffuse"]) > 0 else g.outputs[0]
+    else:
+        surface = diffuse()
+
+    emission = mat.get("emission", [0, 0, 0])
+    if max(emission) > 0:
+        e = nodes.new("ShaderNodeEmission")
+        e.inputs["Color"].default_value = _rgba(emission)
+        e.inputs["Strength"].default_value = 1.0
+        front = add(surface, e.outputs[0])
+        mix = nodes.new("ShaderNodeMixShader")
+        geo = nodes.new("ShaderNodeNewGeometry")
+        links.new(geo.outputs["Backfacing"], mix.inputs[0])
+        links.new(front, mix.inputs[1])
+        links.new(surface, mix.inputs[2])
+        surface = mix.outputs[0]
+    links.new(surface, out.inputs["Surface"])
+    return m
+
+
+def _quad_material(radiance):
+    """Our quad lights: emit from the front, black (no reflection) otherwise."""
+    return _material("quad_light", {"type": "diffuse", "diffuse": [0, 0, 0], "emission": radiance})
+
+
+def _add_mesh(name, positions, triangles, normals, material):
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata([tuple(p) for p in positions], [], [tuple(t) for t in triangles])
+    mesh.update()
+    if normals:
+        mesh.use_auto_smooth = True
+        for poly in mesh.polygons:
+            poly.use_smooth = True
+        mesh.normals_split_custom_set_from_vertices([tuple(n) for n in normals])
+    mesh.materials.append(material)
+    obj = bpy.data.objects.new(name, mesh)
+    bpy.context.scene.collection.objects.link(obj)
+
+
+def _camera(cam, width, height):
+    import mathutils
+
+    data = bpy.data.cameras.new("camera")
+    data.sensor_fit = "VERTICAL"
+    import math
+
+    data.angle_y = math.radians(cam["fov_y"])
+    obj = bpy.data.objects.new("camera", data)
+    bpy.context.scene.collection.objects.link(obj)
+    eye = mathutils.Vector(cam["position"])
+    forward = (mathutils.Vector(cam["look_at"]) - eye).normalized()
+    up = mathutils.Vector(cam["up"])
+    right = forward.cross(up).normalized()
+    true_up = right.cross(forward)
+    # A Blender camera looks down its local -Z with +Y up.
+    rot = mathutils.Matrix((right, true_up, -forward)).transposed()
+    obj.matrix_world = mathutils.Matrix.Translation(eye) @ rot.to_4x4()
+    bpy.context.scene.camera = obj
+
+
+def main(argv):
+    scene_path, prefix, width, height, threads = argv[0], argv[1], int(argv[2]), int(argv[3]), int(argv[4])
+    spps = [int(a) for a in argv[5:]]
+    flat = igi_scene.flatten(scene_path, width, height)
+
+    for obj in list(bpy.data.objects):
+        bpy.data.objects.remove(obj, do_unlink=True)
+    materials = {name: _material(name, m) for name, m in flat["materials"].items()}
+    for mesh in flat["meshes"]:
+        _add_mesh(mesh["name"], mesh["positions"], mesh["triangles"], mesh["normals"], materials[mesh["material"]])
+    for i, q in enumerate(flat["quad_lights"]):
+        c, e1, e2 = q["corner"], q["edge1"], q["edge2"]
+        p = [c, [a + b for a, b in zip(c, e1)], [a + b + d for a, b, d in zip(c, e1, e2)], [a + b for a, b in zip(c, e2)]]
+        # Vertex order c, c+e1, c+e1+e2, c+e2: Blender's face normal is cross(e1, e2), our front.
+        _add_mesh(f"quad_light{i}", p, [[0, 1, 2], [0, 2, 3]], None, _quad_material(q["radiance"]))
+    _camera(flat["camera"], width, height)
+
+    scene = bpy.context.scene
+    world = bpy.data.worlds.new("black")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
+    scene.world = world
+    scene.render.engine = "CYCLES"
+    cycles = scene.cycles
+    cycles.device = "CPU"
+    cycles.use_adaptive_sampling = False
+    cycles.use_denoising = False
+    cycles.sample_clamp_direct = 0.0
+    cycles.sample_clamp_indirect = 0.0
+    cycles.blur_glossy = 0.0
+    cycles.caustics_reflective = True
+    cycles.caustics_refractive = True
+    cycles.max_bounces = 16
+    cycles.diffuse_bounces = 16
+    cycles.glossy_bounces = 16
+    cycles.transmission_bounces = 16
+    cycles.transparent_max_bounces = 16
+    cycles.pixel_filter_type = "BOX"
+    cycles.filter_width = 1.0
+    cycles.seed = 1
+    scene.render.threads_mode = "FIXED"
+    scene.render.threads = threads
+    scene.render.resolution_x = width
+    scene.render.resolution_y = height
+    scene.render.resolution_percentage = 100
+    scene.render.use_persistent_data = False
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+    scene.view_settings.exposure = 0.0
+    scene.view_settings.gamma = 1.0
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.image_settings.exr_codec = "ZIP"
+
+    results = {"startup_seconds": time.time() - START, "renders": []}
+    for spp in spps:
+        cycles.samples = spp
+        scene.render.filepath = f"{prefix}-{spp}spp.exr"
+        t0 = time.time()
+        bpy.ops.render.render(write_still=True)
+        results["renders"].append({"spp": spp, "seconds": time.time() - t0, "image": scene.render.filepath})
+        print(f"cycles: {spp} spp in {results['renders'][-1]['seconds']:.2f} s", flush=True)
+    with open(prefix + ".json", "w", encoding="utf-8") as f:
+        json.dump(results, f, indent=1)
+
+
+if __name__ == "__main__":
+    main(sys.argv[sys.argv.index("--") + 1:])

@@ -1,0 +1,230 @@
+"""Flattens an igi scene (scene.json or bare .obj) into world-space triangles for peer renderers.
+
+The peers (Embree's pathtracer, Blender Cycles) cannot read our scene.json, and each reads MTL
+files its own way (Embree ignores `illum` and `Ke`; Blender maps MTL to a Principled BSDF). To
+compare like with like, this module applies *our* rules (docs/SCENE_FORMAT.md: transforms
+T*Rz*Ry*Rx*S, the MTL -> material table, energy clamping, one-sided quad lights) once, and the
+peer scripts only translate the result into their own vocabulary.
+
+Standard library only: it runs under /usr/bin/python3 and under Blender's Python.
+
+Output of `flatten(path)` (also written as JSON by `python3 igi_scene.py scene out.json`):
+  camera:    {position, look_at, up, fov_y}     (fov_y: vertical, degrees)
+  materials: {name: {type: diffuse|glossy|mirror|glass, diffuse, specular, ior, emission}}
+  meshes:    [{name, material, positions: [[x,y,z]], normals: [[x,y,z]] or None,
+               triangles: [[i,j,k]]}]   (one entry per material and source mesh)
+  quad_lights: [{corner, edge1, edge2, radiance}]   (emit towards cross(edge1, edge2))
+  bounds:    [[minx,miny,minz],[maxx,maxy,maxz]]
+"""
+
+import json
+import math
+import os
+import sys
+
+
+def _vec(value, n=3):
+    """A colour or vector given as one number (grey) or a list."""
+    if isinstance(value, (int, float)):
+        return [float(value)] * n
+    return [float(v) for v in value]
+
+
+def _matmul(a, b):
+    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+
+
+def _rotation(axis, degrees):
+    c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
+    if axis == 0:
+        return [[1, 0, 0], [0, c, -s], [0, s, c]]
+    if axis == 1:
+        return [[c, 0, s], [0, 1, 0], [-s, 0, c]]
+    return [[c, -s, 0], [s, c, 0], [0, 0, 1]]
+
+
+class Transform:
+    """T * Rz * Ry * Rx * S, as docs/SCENE_FORMAT.md defines a mesh entry's transform."""
+
+    def __init__(self, spec=None):
+        spec = spec or {}
+        scale = _vec(spec.get("scale", 1))
+        rot = spec.get("rotate_deg", [0, 0, 0])
+        self.translate = _vec(spec.get("translate", [0, 0, 0]))
+        r = _matmul(_rotation(2, rot[2]), _matmul(_rotation(1, rot[1]), _rotation(0, rot[0])))
+        self.linear = [[r[i][j] * scale[j] for j in range(3)] for i in range(3)]
+        # Normals transform with the inverse transpose: R * S^-1 (then renormalised).
+        self.normal = [[r[i][j] / scale[j] for j in range(3)] for i in range(3)]
+
+    def point(self, p):
+        return [sum(self.linear[i][j] * p[j] for j in range(3)) + self.translate[i] for i in range(3)]
+
+    def direction(self, n):
+        d = [sum(self.normal[i][j] * n[j] for j in range(3)) for i in range(3)]
+        length = math.sqrt(sum(x * x for x in d)) or 1.0
+        return [x / length for x in d]
+
+
+def read_mtl(path):
+    """MTL statements -> igi materials, following the table in docs/SCENE_FORMAT.md."""
+    raw, current = {}, None
+    with open(path, encoding="utf-8", errors="replace") as f:
+        for line in f:
+            words = line.split("#", 1)[0].split()
+            if not words:
+                continue
+            key, args = words[0], words[1:]
+            if key == "newmtl":
+                current = raw.setdefault(" ".join(args), {})
+            elif current is not None and key in ("Kd", "Ks", "Ke"):
+                current[key] = _vec([float(a) for a in args[:3]] if len(args) >= 3 else float(args[0]))
+            elif current is not None and key in ("Ns", "Ni"):
+                current[key] = float(args[0])
+            elif current is not None and key == "illum":
+                current[key] = int(args[0])
+    return {name: _material_from_mtl(m) for name, m in raw.items()}
+
+
+def _material_from_mtl(m):
+    kd, ks = m.get("Kd", [0.0] * 3), m.get("Ks", [0.0] * 3)
+    illum, ni = m.get("illum", 2), m.get("Ni", 0.0)
+    mat = {"type": "diffuse", "diffuse": kd, "specular": [0.0] * 3, "ior": 1.5,
+           "emission": m.get("Ke", [0.0] * 3), "phong_exponent": m.get("Ns", 1.0)}
+    if illum in (3, 5):
+        mat.update(type="mirror", specular=ks)
+    elif illum in (4, 6, 7):
+        mat.update(type="glass", ior=ni if ni > 1.0 else 1.5)
+    elif illum == 2 and max(ks) > 0:
+        mat.update(type="mirror" if m.get("Ns", 0.0) >= 1000 else "glossy", specular=ks)
+    total = max(a + b for a, b in zip(mat["diffuse"], mat["specular"]))
+    if total > 1.0:
+        mat["diffuse"] = [a / total for a in mat["diffuse"]]
+        mat["specular"] = [a / total for a in mat["specular"]]
+    return mat
+
+
+def read_obj(path, transform, mesh_name):
+    """Triangulated, world-space groups of one OBJ file, one per material; and its materials."""
+    folder = os.path.dirname(path)
+    positions, normals, materials = [], [], {}
+    groups, current = {}, "default"
+    with open(path, encoding="utf-8", errors="replace") as f:
+        for line in f:
+            words = line.split("#", 1)[0].split()
+            if not words:
+                continue
+            key, args = words[0], words[1:]
+            if key == "v":
+                positions.append(transform.point([float(a) for a in args[:3]]))
+            elif key == "vn":
+                normals.append(transform.direction([float(a) for a in args[:3]]))
+            elif key == "mtllib":
+                materials.update(read_mtl(os.path.join(folder, " ".join(args))))
+            elif key == "usemtl":
+                current = " ".join(args)
+            elif key == "f":
+                corners = []
+                for a in args:
+                    parts = a.split("/")
+                    vi = int(parts[0])
+                    vi = vi - 1 if vi > 0 else len(positions) + vi
+                    ni = None
+                    if len(parts) >= 3 and parts[2]:
+                        ni = int(parts[2])
+                        ni = ni - 1 if ni > 0 else len(normals) + ni
+                    corners.append((vi, ni))
+                group = groups.setdefault(current, [])
+                for k in range(1, len(corners) - 1):
+                    group.append((corners[0], corners[k], corners[k + 1]))
+    materials.setdefault("default", {"type": "diffuse", "diffuse": [0.8] * 3,
+                                     "specular": [0.0] * 3, "ior": 1.5, "emission": [0.0] * 3})
+    meshes = []
+    for material, triangles in groups.items():
+        index, mesh_pos, mesh_nrm, tris = {}, [], [], []
+        has_normals = all(c[1] is not None for t in triangles for c in t)
+        for t in triangles:
+            ids = []
+            for vi, ni in t:
+                key = (vi, ni if has_normals else None)
+                if key not in index:
+                    index[key] = len(mesh_pos)
+                    mesh_pos.append(positions[vi])
+                    if has_normals:
+                        mesh_nrm.append(normals[ni])
+                ids.append(index[key])
+            tris.append(ids)
+        meshes.append({"name": f"{mesh_name}/{material}", "material": material,
+                       "positions": mesh_pos, "normals": mesh_nrm if has_normals else None,
+                       "triangles": tris})
+    return meshes, materials
+
+
+def _frame_camera(bounds, width, height):
+    """The camera our loader gives a scene without one: looks at the bounds' centre from +Z."""
+    lo, hi = bounds
+    centre = [(a + b) / 2 for a, b in zip(lo, hi)]
+    radius = math.sqrt(sum(((b - a) / 2) ** 2 for a, b in zip(lo, hi)))
+    half = math.radians(45.0) / 2
+    if height > width:  # portrait: the horizontal field of view is the narrow one
+        half = math.atan(math.tan(half) * width / height)
+    distance = radius / math.sin(half)
+    return {"position": [centre[0], centre[1], centre[2] + distance], "look_at": centre,
+            "up": [0.0, 1.0, 0.0], "fov_y": 45.0}
+
+
+def flatten(scene_path, width=None, height=None):
+    if scene_path.lower().endswith(".obj"):
+        spec = {"meshes": [{"file": os.path.basename(scene_path)}]}
+    else:
+        with open(scene_path, encoding="utf-8") as f:
+            spec = json.load(f)
+    folder = os.path.dirname(os.path.abspath(scene_path))
+    image = spec.get("image", {})
+    width = width or image.get("width", 640)
+    height = height or image.get("height", 480)
+
+    meshes, materials = [], {}
+    for entry in spec.get("meshes", []):
+        path = os.path.join(folder, entry["file"])
+        name = entry.get("name", os.path.splitext(os.path.basename(path))[0])
+        m, mats = read_obj(path, Transform(entry.get("transform")), name)
+        # Materials are per file in igi; names are unique across these scenes' files, so one
+        # dictionary is enough here (a clash would be reported rather than silently merged).
+        for key, value in mats.items():
+            if key in materials and materials[key] != value:
+                raise SystemExit(f"{path}: material '{key}' differs from one of the same name")
+            materials[key] = value
+        meshes += m
+    for name, override in spec.get("materials", {}).items():
+        for key, value in override.items():
+            materials[name][key] = value if key in ("type", "ior", "phong_exponent") else _vec(value)
+
+    quads = []
+    for light in spec.get("lights", []):
+        if light["type"] != "quad":
+            raise SystemExit(f"{scene_path}: light type '{light['type']}' is not exported to peers")
+        quads.append({"corner": _vec(light["corner"]), "edge1": _vec(light["edge1"]),
+                      "edge2": _vec(light["edge2"]), "radiance": _vec(light["radiance"])})
+    if spec.get("headlight"):
+        raise SystemExit(f"{scene_path}: headlights are not exported to peers")
+
+    points = [p for m in meshes for p in m["positions"]]
+    for q in quads:
+        c, e1, e2 = q["corner"], q["edge1"], q["edge2"]
+        points += [c, [a + b for a, b in zip(c, e1)], [a + b for a, b in zip(c, e2)],
+                   [a + b + d for a, b, d in zip(c, e1, e2)]]
+    bounds = [[min(p[i] for p in points) for i in range(3)], [max(p[i] for p in points) for i in range(3)]]
+    camera = spec.get("camera")
+    if camera is None:
+        camera = _frame_camera(bounds, width, height)
+    camera = {"position": _vec(camera["position"]), "look_at": _vec(camera["look_at"]),
+              "up": _vec(camera.get("up", [0, 1, 0])), "fov_y": float(camera.get("fov_y", 45.0))}
+    return {"camera": camera, "width": width, "height": height, "materials": materials,
+            "meshes": meshes, "quad_lights": quads, "bounds": bounds}
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        raise SystemExit("usage: igi_scene.py scene.json|model.obj out.json")
+    with open(sys.argv[2], "w", encoding="utf-8") as out:
+        json.dump(flatten(sys.argv[1]), out)
