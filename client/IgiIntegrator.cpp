@@ -120,6 +120,23 @@ glm::vec3 IgiIntegrator::irradianceOverPi(glm::vec3 position, glm::vec3 normal,
                                           RayCounters& counters) const {
     const glm::vec3 origin = scene_.offsetOrigin(position, faceNormal);
     glm::vec3 irradiance(0.0f);
+    // Shadow rays go out in packets of up to 8 (they share the origin); contributions are
+    // added in the VPLs' order, so the sum is the same as one ray at a time.
+    constexpr int kPacket = TraceableScene::kPacket;
+    glm::vec3 directions[kPacket], contributions[kPacket];
+    float tfar[kPacket];
+    bool blocked[kPacket];
+    int pending = 0;
+    auto flush = [&] {
+        if (pending == 0) return;
+        if (pending == 1)
+            blocked[0] = scene_.occluded(origin, directions[0], tfar[0], counters);
+        else
+            scene_.occluded8(origin, directions, tfar, pending, blocked, counters);
+        for (int i = 0; i < pending; ++i)
+            if (!blocked[i]) irradiance += contributions[i];
+        pending = 0;
+    };
     auto gather = [&](const Vpl& v, float minDistance2) {
         const glm::vec3 toLight = v.position - origin;
         const float distance2 = glm::dot(toLight, toLight);
@@ -133,11 +150,14 @@ glm::vec3 IgiIntegrator::irradianceOverPi(glm::vec3 position, glm::vec3 normal,
         // The clamp bounds the 1/d^2 spike near creases; minDistance is a fraction of the
         // scene's size, so it means the same at every scale.
         const float g = cosX * cosY / std::max(distance2, minDistance2);
-        if (scene_.occluded(origin, w, distance * (1.0f - kShadowShrink), counters)) return;
-        irradiance += v.power * g;
+        directions[pending] = w;
+        tfar[pending] = distance * (1.0f - kShadowShrink);
+        contributions[pending] = v.power * g;
+        if (++pending == kPacket) flush();
     };
     for (const Vpl& v : set.direct) gather(v, 0.0f);
     for (const Vpl& v : set.indirect) gather(v, clampDistance2_);
+    flush();
 
     const float r = set.caustics.radius();
     if (!set.caustics.photons().empty()) {

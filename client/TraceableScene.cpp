@@ -133,6 +133,38 @@ bool TraceableScene::occluded(glm::vec3 origin, glm::vec3 direction, float tfar,
     return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
+void TraceableScene::occluded8(glm::vec3 origin, const glm::vec3* directions, const float* tfar,
+                               int count, bool* blocked, RayCounters& counters) const {
+    counters.rays += std::uint64_t(count);
+    counters.shadowRays += std::uint64_t(count);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    // Not RTC_INTERSECT_CONTEXT_FLAG_COHERENT, though the rays share their origin: their
+    // directions spread over the hemisphere, and with that flag the client's shadow rays ran
+    // at half the speed of single rays (igi-bench, 1 thread, default scene: 3.0 against 5.7
+    // Mrays/s); without it, 1.4x faster than single rays.
+    alignas(32) int valid[kPacket];
+    alignas(32) RTCRay8 rays;
+    for (int i = 0; i < kPacket; ++i) {
+        const bool on = i < count;
+        valid[i] = on ? -1 : 0;
+        rays.org_x[i] = origin.x;
+        rays.org_y[i] = origin.y;
+        rays.org_z[i] = origin.z;
+        rays.dir_x[i] = on ? directions[i].x : 0.0f;
+        rays.dir_y[i] = on ? directions[i].y : 0.0f;
+        rays.dir_z[i] = on ? directions[i].z : 1.0f;
+        rays.tnear[i] = 0.0f;
+        rays.tfar[i] = on ? tfar[i] : 0.0f;
+        rays.mask[i] = 0xFFFFFFFFu;
+        rays.flags[i] = 0;
+        rays.time[i] = 0;
+        rays.id[i] = unsigned(i);
+    }
+    rtcOccluded8(valid, top_, &context, &rays);
+    for (int i = 0; i < count; ++i) blocked[i] = rays.tfar[i] < 0.0f;  // -inf on a hit
+}
+
 TraceableScene::WorldTriangle TraceableScene::worldTriangle(std::uint32_t mesh,
                                                             std::uint32_t triangle) const {
     const MeshData& m = meshes_[mesh];

