@@ -25,6 +25,10 @@ constexpr auto kTickPeriod = std::chrono::milliseconds(20);
 // times its holder's usual latency, see TileScheduler): short enough to get past a stalled
 // client, long enough not to duplicate every tile at the end of a frame.
 constexpr double kDuplicateAfterSeconds = 0.05;
+// Frames open at once. A frame's last tiles wait on its slowest holders; while they do, the
+// other clients work on the next frames. With two, 16 clients each capped to a sixteenth of a
+// core sat idle for a third of the time in the tail of every frame (docs/PERFORMANCE.md).
+constexpr std::uint32_t kFramesInFlight = 4;
 
 double secondsSince(Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
@@ -146,12 +150,13 @@ void Master::onMessage(ClientId id, const proto::Header& header, const proto::Me
     Session& s = it->second;
     if (auto* hello = std::get_if<proto::Hello>(&message)) {
         onHello(s, *hello);
+    } else if (auto* error = std::get_if<proto::Error>(&message)) {
+        // Also before Hello: a client that refuses this master (another build) says why.
+        spdlog::warn("client {} reports: {}", id, error->reason);
     } else if (!s.helloed) {
         refuse(s, "the first message must be Hello");
     } else if (auto* ready = std::get_if<proto::SceneReady>(&message)) {
         onSceneReady(s, *ready);
-    } else if (auto* error = std::get_if<proto::Error>(&message)) {
-        spdlog::warn("client {} reports: {}", id, error->reason);
     } else if (!std::holds_alternative<proto::Heartbeat>(message)) {
         refuse(s,
                "unexpected " + proto::messageTypeName(proto::typeOf(message)) + " from a client");
@@ -218,9 +223,10 @@ void Master::maybeStart() {
 }
 
 void Master::openFramesAsNeeded() {
-    // Two frames in flight at most: the next one opens once every tile of the previous one
-    // has been handed out, so clients never wait for the master to finish a frame.
-    while (framesLeft(nextFrameToOpen_) && nextFrameToOpen_ <= nextFrameToFinish_ + 1 &&
+    // kFramesInFlight at most: the next one opens once every tile of the previous one has
+    // been handed out, so clients never wait for the master to finish a frame.
+    while (framesLeft(nextFrameToOpen_) &&
+           nextFrameToOpen_ < nextFrameToFinish_ + kFramesInFlight &&
            (nextFrameToOpen_ == nextFrameToFinish_ ||
             scheduler_->frameFullyAssigned(nextFrameToOpen_ - 1))) {
         const std::uint32_t f = nextFrameToOpen_++;
@@ -452,9 +458,10 @@ void Master::endSession(int exitCode) {
     acceptor_.close(ignored);
     signals_.cancel(ignored);
     if (control_) control_->close();
-    for (auto& [path, reply] : std::exchange(snapshots_, {}))
-        reply(nlohmann::json{{"ok", false}, {"error", "the session ended before the next frame"}}
-                  .dump());
+    for (auto& snapshot : std::exchange(snapshots_, {}))
+        snapshot.reply(
+            nlohmann::json{{"ok", false}, {"error", "the session ended before the next frame"}}
+                .dump());
     // Clients close on Shutdown; closing from this side could cut a client off while it still
     // writes a last result, which it would report as an error. Stragglers are closed after a
     // grace period.
@@ -567,7 +574,13 @@ void Master::writeFrameImages(std::uint32_t frame) {
             }
         });
     }
-    for (auto& [path, reply] : std::exchange(snapshots_, {})) {
+    std::vector<Snapshot> due;
+    std::erase_if(snapshots_, [&](Snapshot& s) {
+        if (frame < s.fromFrame) return false;
+        due.push_back(std::move(s));
+        return true;
+    });
+    for (auto& [path, reply, fromFrame] : due) {
         pool_.submit([this, image, exposure, path, reply, frame] {
             nlohmann::json answer{{"ok", true}, {"path", path}, {"frame", frame}};
             try {
@@ -609,8 +622,7 @@ void Master::onControl(const std::string& line, ControlServer::Reply reply) {
                                         {"fps", stats_.recentFps()}}
                              .dump());
         case ControlRequest::Kind::Snapshot:
-            snapshots_.emplace_back(request.path,
-                                    std::move(reply));  // answered after the next frame
+            snapshots_.push_back({request.path, std::move(reply), nextFrameToOpen_});
             return;
         case ControlRequest::Kind::Stop:
             reply(nlohmann::json{{"ok", true}, {"frames_done", nextFrameToFinish_}}.dump());

@@ -111,8 +111,14 @@ class Master {
     std::unique_ptr<ControlServer> control_;
     boost::asio::signal_set signals_;
     std::int64_t compositedEpoch_ = -1;  ///< epoch of the frame last composited
-    /// Snapshot requests waiting for the next composited frame.
-    std::vector<std::pair<std::string, ControlServer::Reply>> snapshots_;
+    /// A snapshot request waits for the first frame opened after it, so that the image shows
+    /// every change commanded before it (frames already open keep their older scene).
+    struct Snapshot {
+        std::string path;
+        ControlServer::Reply reply;
+        std::uint32_t fromFrame = 0;
+    };
+    std::vector<Snapshot> snapshots_;
     Statistics stats_;
     LocalClients localClients_;
     std::map<ClientId, Session> sessions_;
