@@ -29,6 +29,10 @@ constexpr double kDuplicateAfterSeconds = 0.05;
 // other clients work on the next frames. With two, 16 clients each capped to a sixteenth of a
 // core sat idle for a third of the time in the tail of every frame (docs/PERFORMANCE.md).
 constexpr std::uint32_t kFramesInFlight = 4;
+// Each open frame holds a full-size FrameBuffer: big images open fewer frames (never fewer
+// than two, which pipelining needs) to keep these buffers within this budget.
+constexpr std::size_t kOpenFrameBufferBudget = std::size_t{1} << 30;
+constexpr std::size_t kFrameBufferBytesPerPixel = 4 * sizeof(glm::vec3) + sizeof(float);
 
 double secondsSince(Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
@@ -69,6 +73,10 @@ void Master::loadScene() {
     auto layout = makeTiles(scene_.image.width, scene_.image.height, s.interleaveX, s.interleaveY,
                             s.tileSize);
     scheduler_ = std::make_unique<TileScheduler>(std::move(layout), s.setCount());
+    const std::size_t frameBytes = kFrameBufferBytesPerPixel * std::size_t(scene_.image.width) *
+                                   std::size_t(scene_.image.height);
+    framesInFlight_ = std::uint32_t(
+        std::clamp<std::size_t>(kOpenFrameBufferBudget / frameBytes, 2, kFramesInFlight));
     compositor_ =
         std::make_unique<FrameCompositor>(scene_.image.width, scene_.image.height, s, pool_);
     spdlog::info(
@@ -223,10 +231,10 @@ void Master::maybeStart() {
 }
 
 void Master::openFramesAsNeeded() {
-    // kFramesInFlight at most: the next one opens once every tile of the previous one has
+    // framesInFlight_ at most: the next one opens once every tile of the previous one has
     // been handed out, so clients never wait for the master to finish a frame.
     while (framesLeft(nextFrameToOpen_) &&
-           nextFrameToOpen_ < nextFrameToFinish_ + kFramesInFlight &&
+           nextFrameToOpen_ < nextFrameToFinish_ + framesInFlight_ &&
            (nextFrameToOpen_ == nextFrameToFinish_ ||
             scheduler_->frameFullyAssigned(nextFrameToOpen_ - 1))) {
         const std::uint32_t f = nextFrameToOpen_++;

@@ -111,6 +111,7 @@ class Master {
     std::unique_ptr<ControlServer> control_;
     boost::asio::signal_set signals_;
     std::int64_t compositedEpoch_ = -1;  ///< epoch of the frame last composited
+    std::uint32_t framesInFlight_ = 2;   ///< frames open at once (from the image size)
     /// A snapshot request waits for the first frame opened after it, so that the image shows
     /// every change commanded before it (frames already open keep their older scene).
     struct Snapshot {
