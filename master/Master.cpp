@@ -27,7 +27,8 @@ constexpr auto kTickPeriod = std::chrono::milliseconds(20);
 constexpr double kDuplicateAfterSeconds = 0.05;
 // Frames open at once. A frame's last tiles wait on its slowest holders; while they do, the
 // other clients work on the next frames. With two, 16 clients each capped to a sixteenth of a
-// core sat idle for a third of the time in the tail of every frame (docs/PERFORMANCE.md).
+// core idled in every frame's tail and reached 60-70 % of linear scaling; with four, linear
+// (scripts/bench_performance.sh, docs/PERFORMANCE.md).
 constexpr std::uint32_t kFramesInFlight = 4;
 // Each open frame holds a full-size FrameBuffer: big images open fewer frames (never fewer
 // than two, which pipelining needs) to keep these buffers within this budget.

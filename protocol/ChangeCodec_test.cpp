@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "util/ExpectContains.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -103,12 +105,6 @@ std::string errorWithByte(std::size_t i, std::size_t offset, std::uint8_t value)
     payload.at(offsetOfChange(i) + offset) = value;
     return updateError(payload);
 }
-
-#define EXPECT_CONTAINS(haystack, needle)                                   \
-    do {                                                                    \
-        const std::string h_ = (haystack);                                  \
-        EXPECT_NE(h_.find(needle), std::string::npos) << "message: " << h_; \
-    } while (0)
 
 // Indices of the kinds in sampleChanges().
 constexpr std::size_t kCamera = 0, kTransform = 1, kPoint = 2, kQuad = 3, kMaterial = 4;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "util/ExpectContains.h"
+
 #include "scene/SceneLoader.h"
 #include "scene/TestScenes.h"
 
@@ -9,9 +11,6 @@ namespace igi {
 namespace {
 
 using test::sceneErrorOf;
-
-#define EXPECT_CONTAINS(haystack, needle) \
-    EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << (haystack)
 
 const char* kOneMesh =
     R"({"meshes": [{"file": "m.obj"}], "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}})";

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "util/ExpectContains.h"
+
 #include "scene/SceneLoader.h"
 #include "scene/TestScenes.h"
 #include "scene/TextureLoader.h"
@@ -18,11 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-#define EXPECT_CONTAINS(haystack, needle)                            \
-    EXPECT_NE(std::string(haystack).find(needle), std::string::npos) \
-        << "'" << (haystack) << "' does not contain '" << (needle) << "'"
-
-constexpr const char* kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+using test::kTriangle;
 constexpr const char* kLeaves = "leaves the scene's folder; pass --allow-outside-paths to allow it";
 
 // A scene folder ("scene/") next to a folder it must not reach ("outside/"), removed at the

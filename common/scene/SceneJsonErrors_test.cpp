@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "util/ExpectContains.h"
+
 #include "scene/SceneLoader.h"
 #include "scene/TestScenes.h"
 
@@ -22,9 +24,6 @@ std::map<std::string, std::string> triangleFiles() {
     return {{"t.obj", "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n"},
             {"t.mtl", "newmtl a\nKd 0.5 0.5 0.5\n"}};
 }
-
-#define EXPECT_CONTAINS(haystack, needle) \
-    EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << (haystack)
 
 TEST(SceneJsonErrors, SyntaxErrorGivesLineAndColumn) {
     const std::string what =

@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include "util/ExpectContains.h"
+
 #include "scene/SceneLoader.h"
 #include "scene/TestScenes.h"
 #include "scene/TextureLoader.h"
@@ -23,11 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-#define EXPECT_CONTAINS(haystack, needle)                            \
-    EXPECT_NE(std::string(haystack).find(needle), std::string::npos) \
-        << "'" << (haystack) << "' does not contain '" << (needle) << "'"
-
-constexpr const char* kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+using test::kTriangle;
 constexpr const char* kCamera = R"("camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]})";
 
 using Files = std::map<std::string, std::string>;

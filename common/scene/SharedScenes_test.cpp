@@ -3,7 +3,9 @@
 #include <chrono>
 
 #include <gtest/gtest.h>
+
 #include <spdlog/spdlog.h>
+#include "util/ExpectContains.h"
 
 #include "scene/SceneBounds.h"
 #include "scene/SceneLoader.h"
@@ -15,9 +17,6 @@ namespace {
 #define REQUIRE_SHARED_SCENES()                  \
     const auto shared = test::sharedScenesDir(); \
     if (!shared) GTEST_SKIP() << "no shared scenes folder next to the project"
-
-#define EXPECT_CONTAINS(haystack, needle) \
-    EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << (haystack)
 
 std::size_t triangleCount(const Scene& s) {
     std::size_t n = 0;

@@ -17,6 +17,9 @@
 
 namespace igi::test {
 
+/// An OBJ of one triangle, for scenes whose geometry does not matter.
+inline constexpr const char* kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
 /// common/scene/testdata in the source tree.
 inline std::filesystem::path testdataDir() {
     return igi::testing::sourceDir() / "common" / "scene" / "testdata";

@@ -65,23 +65,27 @@ class Transform:
         return [x / length for x in d]
 
 
-def read_mtl(path):
-    """MTL statements -> igi materials, following the table in docs/SCENE_FORMAT.md."""
-    raw, current = {}, None
+def _statements(path):
+    """(keyword, arguments) of each non-empty line of an OBJ or MTL file, comments dropped."""
     with open(path, encoding="utf-8", errors="replace") as f:
         for line in f:
             words = line.split("#", 1)[0].split()
-            if not words:
-                continue
-            key, args = words[0], words[1:]
-            if key == "newmtl":
-                current = raw.setdefault(" ".join(args), {})
-            elif current is not None and key in ("Kd", "Ks", "Ke"):
-                current[key] = _vec([float(a) for a in args[:3]] if len(args) >= 3 else float(args[0]))
-            elif current is not None and key in ("Ns", "Ni"):
-                current[key] = float(args[0])
-            elif current is not None and key == "illum":
-                current[key] = int(args[0])
+            if words:
+                yield words[0], words[1:]
+
+
+def read_mtl(path):
+    """MTL statements -> igi materials, following the table in docs/SCENE_FORMAT.md."""
+    raw, current = {}, None
+    for key, args in _statements(path):
+        if key == "newmtl":
+            current = raw.setdefault(" ".join(args), {})
+        elif current is not None and key in ("Kd", "Ks", "Ke"):
+            current[key] = _vec([float(a) for a in args[:3]] if len(args) >= 3 else float(args[0]))
+        elif current is not None and key in ("Ns", "Ni"):
+            current[key] = float(args[0])
+        elif current is not None and key == "illum":
+            current[key] = int(args[0])
     return {name: _material_from_mtl(m) for name, m in raw.items()}
 
 
@@ -108,34 +112,29 @@ def read_obj(path, transform, mesh_name):
     folder = os.path.dirname(path)
     positions, normals, materials = [], [], {}
     groups, current = {}, "default"
-    with open(path, encoding="utf-8", errors="replace") as f:
-        for line in f:
-            words = line.split("#", 1)[0].split()
-            if not words:
-                continue
-            key, args = words[0], words[1:]
-            if key == "v":
-                positions.append(transform.point([float(a) for a in args[:3]]))
-            elif key == "vn":
-                normals.append(transform.direction([float(a) for a in args[:3]]))
-            elif key == "mtllib":
-                materials.update(read_mtl(os.path.join(folder, " ".join(args))))
-            elif key == "usemtl":
-                current = " ".join(args)
-            elif key == "f":
-                corners = []
-                for a in args:
-                    parts = a.split("/")
-                    vi = int(parts[0])
-                    vi = vi - 1 if vi > 0 else len(positions) + vi
-                    ni = None
-                    if len(parts) >= 3 and parts[2]:
-                        ni = int(parts[2])
-                        ni = ni - 1 if ni > 0 else len(normals) + ni
-                    corners.append((vi, ni))
-                group = groups.setdefault(current, [])
-                for k in range(1, len(corners) - 1):
-                    group.append((corners[0], corners[k], corners[k + 1]))
+    for key, args in _statements(path):
+        if key == "v":
+            positions.append(transform.point([float(a) for a in args[:3]]))
+        elif key == "vn":
+            normals.append(transform.direction([float(a) for a in args[:3]]))
+        elif key == "mtllib":
+            materials.update(read_mtl(os.path.join(folder, " ".join(args))))
+        elif key == "usemtl":
+            current = " ".join(args)
+        elif key == "f":
+            corners = []
+            for a in args:
+                parts = a.split("/")
+                vi = int(parts[0])
+                vi = vi - 1 if vi > 0 else len(positions) + vi
+                ni = None
+                if len(parts) >= 3 and parts[2]:
+                    ni = int(parts[2])
+                    ni = ni - 1 if ni > 0 else len(normals) + ni
+                corners.append((vi, ni))
+            group = groups.setdefault(current, [])
+            for k in range(1, len(corners) - 1):
+                group.append((corners[0], corners[k], corners[k + 1]))
     materials.setdefault("default", {"type": "diffuse", "diffuse": [0.8] * 3,
                                      "specular": [0.0] * 3, "ior": 1.5, "emission": [0.0] * 3})
     meshes = []
