@@ -98,6 +98,36 @@ TEST(SceneBundle, SharedScenesRoundTrip) {
     expectRoundTrip(test::testdataDir() / "gltf-samples.json", test::trusted());
 }
 
+// A bare glTF is a scene as a bare OBJ is: the model, auto-framed, with a headlight only when
+// nothing in it emits.
+TEST(SceneLoader, BareGltfIsAScene) {
+    const auto lit = test::testdataDir() / "gltf" / "triangle.gltf";
+    const Scene withLamp = loadSceneFile(lit);
+    ASSERT_EQ(withLamp.pointLights.size(), 1u);
+    EXPECT_EQ(withLamp.pointLights[0].name, "lamp");
+    expectRoundTrip(lit);
+
+    const auto plain = test::testdataDir() / "gltf" / "plain.gltf";
+    SceneBundle bundle;
+    const Scene dark = loadSceneFile(plain, &bundle);
+    ASSERT_EQ(dark.pointLights.size(), 1u);
+    EXPECT_EQ(dark.pointLights[0].name, "headlight");
+    EXPECT_NE(bundle.sceneText.find("headlight"), std::string::npos);
+    expectRoundTrip(plain);
+}
+
+TEST(SceneLoader, BareSharedGltfScenes) {
+    const auto shared = test::sharedScenesDir();
+    if (!shared) GTEST_SKIP() << "no shared scenes folder next to the project";
+    const auto emissive = *shared / "gltf" / "EmissiveStrengthTest" / "glTF";
+    SceneBundle bundle;
+    const Scene lit = loadSceneFile(emissive / "EmissiveStrengthTest.gltf", &bundle);
+    EXPECT_TRUE(lit.pointLights.empty()) << "emissive cubes light it: no headlight";
+    EXPECT_EQ(bundle.sceneText.find("headlight"), std::string::npos);
+    expectRoundTrip(emissive / "EmissiveStrengthTest.gltf");
+    expectRoundTrip(*shared / "gltf" / "LightsPunctualLamp" / "glTF" / "LightsPunctualLamp.gltf");
+}
+
 TEST(SceneBundle, AMissingFileInTheBundleIsAnError) {
     SceneBundle bundle;
     loadSceneFile(test::testdataDir() / "minimal" / "scene.json", &bundle);

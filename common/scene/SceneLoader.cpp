@@ -1,5 +1,5 @@
 // loadSceneFile and loadSceneBundle: where the bytes come from (disk or a bundle) and how a
-// bare OBJ becomes a scene file.
+// bare mesh file (OBJ, glTF, GLB) becomes a scene file.
 
 #include "scene/SceneLoader.h"
 
@@ -28,11 +28,11 @@ std::string readSceneText(const fs::path& path, const SceneLimits& limits) {
     return readRegularFile(path, limits.maxSceneFileBytes, path.string());
 }
 
-// The scene file a bare OBJ stands for: the object, auto-framed, lit by a headlight when it
-// has no emitter of its own.
-std::string objSceneText(const std::string& objName, bool headlight) {
+// The scene file a bare mesh file stands for: the object, auto-framed, lit by a headlight when
+// it has no emitter of its own.
+std::string meshSceneText(const std::string& meshName, bool headlight) {
     nlohmann::ordered_json scene;
-    scene["meshes"] = nlohmann::ordered_json::array({{{"file", objName}}});
+    scene["meshes"] = nlohmann::ordered_json::array({{{"file", meshName}}});
     if (headlight) scene["headlight"] = true;
     return scene.dump(2) + "\n";
 }
@@ -60,18 +60,19 @@ Scene loadFromDisk(const fs::path& path, SceneBundle& bundle, const SceneLoadOpt
     if (ext == ".json") {
         bundle.sceneText = readSceneText(path, options.limits);
         scene = parseScene(bundle.sceneText, name, disk, options.limits);
-    } else if (ext == ".obj") {
-        bundle.sceneText = objSceneText(name, false);
+    } else if (ext == ".obj" || ext == ".gltf" || ext == ".glb") {
+        bundle.sceneText = meshSceneText(name, false);
         scene = parseScene(bundle.sceneText, name, disk, options.limits);
         // The headlight depends on the materials, known only now: add it as parseScene would
         // for the text that says so, and ship that text.
         if (!hasEmitter(scene)) {
-            bundle.sceneText = objSceneText(name, true);
+            bundle.sceneText = meshSceneText(name, true);
             addHeadlight(scene);
         }
     } else {
         throw SceneError::inFile(
-            path.string(), "unsupported scene file type '" + ext + "' (expected .json or .obj)");
+            path.string(), "unsupported scene file type '" + ext +
+                                           "' (expected .json, .obj, .gltf or .glb)");
     }
     bundle.sceneName = name;
     bundle.files = disk.filesRead();
