@@ -70,9 +70,8 @@ Scene loadFromDisk(const fs::path& path, SceneBundle& bundle, const SceneLoadOpt
             addHeadlight(scene);
         }
     } else {
-        throw SceneError::inFile(
-            path.string(), "unsupported scene file type '" + ext +
-                                           "' (expected .json, .obj, .gltf or .glb)");
+        throw SceneError::inFile(path.string(), "unsupported scene file type '" + ext +
+                                                    "' (expected .json, .obj, .gltf or .glb)");
     }
     bundle.sceneName = name;
     bundle.files = disk.filesRead();
