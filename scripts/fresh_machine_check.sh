@@ -89,13 +89,15 @@ mounted=()
 
 cleanup() {
   local status=$? i
+  # Nothing here may stop the cleanup half-way (a grep that matches nothing fails).
+  set +e
   for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do
     umount "${mounted[i]}" 2>/dev/null || umount -l "${mounted[i]}" 2>/dev/null || true
   done
   # Whatever is still mounted under the root (a mount a build made, say) goes too, deepest first.
   if [ -d "$chroot_dir" ]; then
     findmnt -rn -o TARGET | grep -F "$chroot_dir/" | sort -r | while read -r m; do
-      umount -l "$m" 2>/dev/null || true
+      umount -l "$m" 2>/dev/null
     done
   fi
   if findmnt -rn -o TARGET | grep -qF "$work"; then
