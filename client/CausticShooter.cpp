@@ -152,6 +152,39 @@ std::vector<CausticPhoton> CausticShooter::shoot(std::uint32_t frame, std::uint3
     return photons;
 }
 
+void CausticShooter::shootFromVpls(std::uint32_t frame, std::uint32_t setIndex,
+                                   const std::vector<Vpl>& vpls, std::uint32_t count,
+                                   std::vector<CausticPhoton>& out, std::uint32_t& shot,
+                                   RayCounters& counters) const {
+    if (targets_.empty() || vpls.empty() || count == 0) return;
+    const LightPathSampler sampler(seed_, frame, SampleStream::IndirectCausticPhotons, setIndex,
+                                   count, maxDepth_ + 1);
+    const float vplCount = float(vpls.size());
+    for (std::uint32_t j = 0; j < count; ++j) {
+        ++shot;
+        // One number picks the VPL and, rescaled, the target.
+        const float u = sampler.emission(j, 0) * vplCount;
+        const auto index = std::min<std::size_t>(std::size_t(u), vpls.size() - 1);
+        const Vpl& v = vpls[index];
+        const float uTarget = std::min(u - float(index), 0.99999994f);
+        glm::vec3 direction;
+        float pdfDirection = 0;
+        if (!samplePhotonDirection(v.position, uTarget,
+                                   {sampler.emission(j, 3), sampler.emission(j, 4)}, direction,
+                                   pdfDirection))
+            continue;
+        const float cosY = glm::dot(direction, v.normal);
+        if (cosY <= 0) continue;
+        glm::vec3 intensity = v.power;
+        if (v.glossy()) {
+            const float c = glm::dot(direction, v.mirror);
+            if (c > 0) intensity += v.glossyPower * std::pow(std::min(c, 1.0f), v.exponent);
+        }
+        const glm::vec3 power = intensity * (cosY * vplCount / (pdfDirection * float(count)));
+        trace(v.position, direction, power, j, sampler, out, counters);
+    }
+}
+
 void CausticShooter::trace(glm::vec3 origin, glm::vec3 direction, glm::vec3 power,
                            std::uint32_t path, const LightPathSampler& sampler,
                            std::vector<CausticPhoton>& out, RayCounters& counters) const {
@@ -161,19 +194,19 @@ void CausticShooter::trace(glm::vec3 origin, glm::vec3 direction, glm::vec3 powe
                               counters))
             return;
         const Lobes lobes = lobesAt(hit, -direction);
-        if (bounce > 1 && lobes.hasDiffuse())
-            out.push_back({hit.position, direction, power});  // L S+ D: a caustic photon
+        // A non-delta surface reached through mirrors and glass stores the photon (L S+ D: a
+        // caustic); what it reflects from there on is the VPLs' business.
+        if (bounce > 1 && lobes.hasNonDelta()) out.push_back({hit.position, direction, power});
+        // Only delta continuations make caustics.
         Lobe lobe;
         float probability = 0;
         if (bounce > maxDepth_ ||
-            !chooseLobe(lobes, sampler.bounce(path, bounce, 2), lobe, probability))
+            !chooseDeltaLobe(lobes, sampler.bounce(path, bounce, 2), lobe, probability))
             return;
-        // Only specular continuations make caustics; diffuse transport is the VPLs' business.
-        if (lobe == Lobe::Diffuse) return;
         glm::vec3 weight;
-        if (!sampleSpecular(lobes, lobe,
-                            {sampler.bounce(path, bounce, 0), sampler.bounce(path, bounce, 1)},
-                            direction, weight))
+        if (!sampleLobe(lobes, lobe,
+                        {sampler.bounce(path, bounce, 0), sampler.bounce(path, bounce, 1)},
+                        direction, weight))
             return;
         power *= weight / probability;
         if (isBlack(power)) return;

@@ -7,15 +7,19 @@
 
 #include "Lights.h"
 #include "TraceableScene.h"
+#include "Vpl.h"
 #include "igi/CausticPhoton.h"
 #include "render/RenderSettings.h"
 
 namespace igi {
 
-/// Shoots caustic photons from the lights at the mirrors and glass of a scene and follows them
-/// through specular bounces to the first diffuse surface (paper, section 4.1). Photons are aimed
-/// at the bounding spheres of the specular objects, so none is wasted on diffuse surfaces that
-/// direct light handles anyway; a scene without mirrors or glass has no target and shoots none.
+/// Shoots caustic photons at the mirrors and glass of a scene and follows them through delta
+/// bounces to the first non-delta surface (paper, section 4.1), where they are stored. Photons
+/// are aimed at the bounding spheres of the specular objects, so none is wasted on surfaces that
+/// the light samples and VPLs light anyway; a scene without mirrors or glass has no target and
+/// shoots none. They start on the lights (light-specular-diffuse paths: caustics) and, for the
+/// converging estimator, on the VPLs (diffuse-specular-diffuse paths: a wall lighting the floor
+/// through a mirror or a glass ball, which no VPL connection can carry).
 class CausticShooter {
   public:
     CausticShooter(const TraceableScene& scene, const Lights& lights,
@@ -28,6 +32,11 @@ class CausticShooter {
     std::vector<CausticPhoton> shoot(std::uint32_t frame, std::uint32_t setIndex,
                                      std::uint32_t& shot, RayCounters& counters) const;
 
+    /// Adds to `out` the photons of `count` paths that start on the VPLs of set `setIndex` (one
+    /// chosen uniformly per path, emitting through its BRDF); `shot` grows by the paths shot.
+    void shootFromVpls(std::uint32_t frame, std::uint32_t setIndex, const std::vector<Vpl>& vpls,
+                       std::uint32_t count, std::vector<CausticPhoton>& out, std::uint32_t& shot,
+                       RayCounters& counters) const;
     /// Gathering radius in world units.
     float radius() const { return radius_; }
 

@@ -267,7 +267,7 @@ void ClientSession::onTile(const proto::Header& header, const proto::TileAssign&
     const std::uint32_t frame = header.frame, epoch = header.epoch;
     std::shared_ptr<SceneVersion> v = version->second;
     if (options_.replay) return replayTile(v, frame, epoch, a.tileId, tile);
-    v->renderer.render(pool_, frame, a.tileId, tile,
+    v->renderer.render(pool_, frame, a.accumulation, a.tileId, tile,
                        [this, v, frame, epoch](proto::TileResult&& result) {
                            connection_->send(result, frame, epoch);
                        });
@@ -285,7 +285,9 @@ void ClientSession::replayTile(const std::shared_ptr<SceneVersion>& version, std
             return;
         }
     }
-    version->renderer.render(pool_, frame, tileId, tile,
+    // Replayed tiles are the first frame's, whatever the accumulation: the master's ceiling is
+    // measured, not the image.
+    version->renderer.render(pool_, frame, 0, tileId, tile,
                              [this, version, frame, epoch, tileId](proto::TileResult&& result) {
                                  std::vector<std::uint8_t> bytes =
                                      proto::encodeMessage(result, frame, epoch);

@@ -220,12 +220,14 @@ TEST(LightIntensity, From1eMinus6To1e6TheDisplayedImageMatchesWithinOneCode) {
 
 // ---- Albedo 0 and 0.999 -----------------------------------------------------------------------
 
-// Albedo 0.999 in a closed sphere: the walk's paths end when the quasi-random roulette has none
-// left, so the image converges to the sum of the bounces the walk reaches, finite and below the
-// analytic rho I / (pi R^2 (1 - rho)) of all bounces.
+// Albedo 0.999 in a closed sphere, with the paper's walk: its paths end when the quasi-random
+// roulette has none left, so the image converges to the sum of the bounces the walk reaches,
+// finite and below the analytic rho I / (pi R^2 (1 - rho)) of all bounces.
 TEST(Albedo, NearOneStaysFiniteAndBelowTheClosedSphereBound) {
     const float rho = 0.999f;
-    InProcessRenderer renderer(closedSphere(rho));
+    Scene scene = closedSphere(rho);
+    scene.render.roulette = false;
+    InProcessRenderer renderer(scene);
     const Image image = renderer.render(4);
     EXPECT_EQ(renderer.nonFiniteValues(), 0u);
     ASSERT_TRUE(allFinite(image));
@@ -243,6 +245,27 @@ TEST(Albedo, NearOneStaysFiniteAndBelowTheClosedSphereBound) {
     EXPECT_GE(deepest, 3);
     EXPECT_NEAR(mean / expected, 1.0, 0.02);
     for (const auto& p : image.pixels) ASSERT_LT(p.x, bound) << "energy exploded";
+}
+
+// The same with Russian roulette: a path survives each bounce with probability 0.999, so nearly
+// every path reaches the safety cap, and the image is the series truncated there, finite and
+// below the bound.
+TEST(Albedo, NearOneWithRouletteIsTheSeriesUpToTheCap) {
+    const float rho = 0.999f;
+    Scene scene = closedSphere(rho);
+    scene.render.roulette = true;
+    scene.render.rouletteMaxLength = 24;
+    InProcessRenderer renderer(scene);
+    const Image image = renderer.render(4);
+    EXPECT_EQ(renderer.nonFiniteValues(), 0u);
+    ASSERT_TRUE(allFinite(image));
+    double bounces = 0;  // vertices 0 (direct) .. cap - 1
+    for (int v = 0; v < scene.render.rouletteMaxLength; ++v) bounces += std::pow(double(rho), v);
+    const double expected = rho / kPi * bounces;
+    const double mean = testing::meanOf(image).x;
+    std::printf("albedo 0.999 with roulette: mean %.4g, expected %.4g\n", mean, expected);
+    EXPECT_NEAR(mean / expected, 1.0, 0.02);
+    for (const auto& p : image.pixels) ASSERT_LT(p.x, rho / (kPi * (1.0 - rho)));
 }
 
 // The path tracer at albedo 0.999: Russian roulette keeps the throughput bounded, and the
@@ -274,7 +297,8 @@ TEST(Albedo, ZeroGivesABlackImageAndExactlyTheDirectIrradiance) {
     const LightingSet set = renderer.renderer().builder().build(0, 0);
     EXPECT_TRUE(set.indirect.empty());
     const CameraModel camera(scene.camera, scene.image.width, scene.image.height);
-    const IgiIntegrator igi(renderer.traceable(), scene.render, camera);
+    const IgiIntegrator igi(renderer.traceable(), renderer.renderer().lights(), scene.render,
+                            camera);
     const Mesh& sphere = scene.meshes[0];
     for (std::size_t i = 0; i < sphere.positions.size(); i += 97) {
         const glm::vec3 inward = -sphere.normals[i];
@@ -437,6 +461,7 @@ TEST(ImageSize, TilesPartitionTheLargestImages) {
 // whatever other setting would have asked for VPLs.
 TEST(VplCount, ZeroVplsGiveTheDirectImage) {
     Scene scene = testing::cornellBox(1.0f, /*glassBall=*/true);
+    scene.render.roulette = false;  // maxLightPathLength cuts the paths
     const Image full = renderChecked(scene, 1);
     scene.render.indirectVpls = 0;
     scene.render.maxLightPathLength = 1;

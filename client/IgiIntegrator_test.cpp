@@ -59,6 +59,7 @@ TEST(ClosedSphere, PathTracerConvergesToTheSameAnswer) {
 TEST(ClosedSphere, DirectLightAloneIsExact) {
     // Light paths of length 1 (the light only): no VPL, only the direct samples.
     Scene scene = closedSphere(1.0f, 0.5f);
+    scene.render.roulette = false;
     scene.render.maxLightPathLength = 1;
     InProcessRenderer renderer(scene);
     const double expected = 0.5 / kPi;

@@ -33,7 +33,8 @@ TEST(Interleaving, FilteredInterleavedFloorMatchesAllSetsInEveryPixel) {
 
     // The reference: every pixel lit by all nine sets, averaged.
     const CameraModel camera(scene.camera, scene.image.width, scene.image.height);
-    const IgiIntegrator igi(renderer.traceable(), scene.render, camera);
+    const IgiIntegrator igi(renderer.traceable(), renderer.renderer().lights(), scene.render,
+                            camera);
     std::vector<LightingSet> sets;
     for (std::uint32_t k = 0; k < 9; ++k) sets.push_back(renderer.renderer().builder().build(0, k));
     double worst = 0, sumFiltered = 0, sumReference = 0;

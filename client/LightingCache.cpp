@@ -2,8 +2,9 @@
 
 namespace igi {
 
-std::shared_ptr<const LightingSet> LightingCache::get(std::uint32_t frame, std::uint32_t setIndex,
-                                                      bool& built) {
+std::shared_ptr<const LightingSet> LightingCache::get(std::uint32_t frame,
+                                                      std::uint32_t accumulation,
+                                                      std::uint32_t setIndex, bool& built) {
     std::promise<std::shared_ptr<const LightingSet>> promise;
     std::shared_future<std::shared_ptr<const LightingSet>> future;
     {
@@ -19,7 +20,8 @@ std::shared_ptr<const LightingSet> LightingCache::get(std::uint32_t frame, std::
     }
     if (built) {
         try {
-            promise.set_value(std::make_shared<const LightingSet>(builder_.build(frame, setIndex)));
+            promise.set_value(
+                std::make_shared<const LightingSet>(builder_.build(frame, accumulation, setIndex)));
         } catch (...) {
             promise.set_exception(std::current_exception());
         }

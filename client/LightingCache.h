@@ -19,9 +19,10 @@ class LightingCache {
   public:
     explicit LightingCache(const LightingSetBuilder& builder) : builder_(builder) {}
 
-    /// The set of (frame, setIndex); `built` tells whether this call built it.
-    std::shared_ptr<const LightingSet> get(std::uint32_t frame, std::uint32_t setIndex,
-                                           bool& built);
+    /// The set of (frame, setIndex); `built` tells whether this call built it. `accumulation`
+    /// is the frame's place in its accumulation, the same for every tile of the frame.
+    std::shared_ptr<const LightingSet> get(std::uint32_t frame, std::uint32_t accumulation,
+                                           std::uint32_t setIndex, bool& built);
 
     /// Forgets the sets of frames before `frame`.
     void evictBefore(std::uint32_t frame);

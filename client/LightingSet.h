@@ -11,12 +11,18 @@ namespace igi {
 
 /// Everything the pixels of one interleaving identification k use in one frame: the set P_k
 /// (points on the lights for direct light, VPLs for indirect light) and the set C_k of caustic
-/// photons. A client builds it itself from the session seed, the frame and k, so every client
-/// that renders a tile of k builds exactly the same set, and no one waits for anyone.
+/// photons. A client builds it itself from the session seed, the frame (and the frame's place
+/// in the accumulation, which the master sends) and k, so every client that renders a tile of
+/// k builds exactly the same set, and no one waits for anyone.
 struct LightingSet {
-    std::vector<Vpl> direct;    ///< samples on the lights (unclamped geometry term)
-    std::vector<Vpl> indirect;  ///< VPLs from quasi-random walks (clamped geometry term)
-    CausticGrid caustics;
+    std::vector<Vpl> direct;    ///< samples on the lights (connections not bounded)
+    std::vector<Vpl> indirect;  ///< VPLs from light paths (connections bounded)
+    CausticGrid caustics;       ///< photons that reached a non-delta surface through mirrors/glass
+    /// The connection bound's distance, squared (ConnectionBound), for this frame.
+    float minDistance2 = 0;
+    /// Whether the settings ask for indirect light at all (VPL paths longer than the light):
+    /// the bound's compensation only completes the VPLs' estimate.
+    bool indirectLight = false;
     std::uint32_t lightPaths = 0;  ///< light paths traced for `indirect`
     std::uint32_t photonsShot = 0;
     RayCounters buildRays;  ///< rays traced to build the set

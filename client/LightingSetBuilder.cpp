@@ -9,6 +9,7 @@
 #include "math/Color.h"
 #include "math/Frame.h"
 #include "math/Warp.h"
+#include "render/ProgressiveSchedule.h"
 #include "sampling/LightPathSampler.h"
 #include "sampling/Sobol.h"
 
@@ -37,6 +38,25 @@ std::uint32_t pathsFor(int wantedVpls, float rho, int maxLength) {
     }
 }
 
+// A VPL where a light path carrying `flux` met a non-delta surface: it carries the surface's
+// BRDF, seen from the direction the light came from.
+Vpl vplAt(const TraceableScene& scene, const SurfacePoint& hit, const Lobes& lobes,
+          glm::vec3 flux) {
+    const SurfaceBrdf& b = lobes.brdf;
+    Vpl v;
+    v.position = scene.offsetOrigin(hit.position, lobes.faceNormal);
+    v.normal = lobes.normal;
+    v.power = flux * b.kd * kInvPi;
+    v.diffuseShare = b.diffuseShare;
+    v.glossyShare = b.glossyShare;
+    if (b.hasGlossy()) {
+        v.glossyPower = flux * b.ks * ((b.exponent + 2.0f) * 0.5f * kInvPi);
+        v.exponent = b.exponent;
+        v.mirror = lobes.mirrorDirection;  // lobes.wo is where the light came from
+    }
+    return v;
+}
+
 }  // namespace
 
 LightingSetBuilder::LightingSetBuilder(const TraceableScene& scene, const Lights& lights,
@@ -46,21 +66,37 @@ LightingSetBuilder::LightingSetBuilder(const TraceableScene& scene, const Lights
                                       : pathsFor(settings.indirectVpls, scene.meanAlbedo(),
                                                  settings.maxLightPathLength);
     survivors_ = survivorCounts(vplPaths_, scene.meanAlbedo(), settings.maxLightPathLength);
+    minDistance_ = settings.clampDistance * scene.diagonal();
+}
+
+int LightingSetBuilder::maxLightPathLength() const {
+    return settings_.roulette ? settings_.rouletteMaxLength : settings_.maxLightPathLength;
 }
 
 std::uint32_t LightingSetBuilder::survivors(std::uint32_t d) const {
     return d < survivors_.size() ? survivors_[d] : 0;
 }
 
-LightingSet LightingSetBuilder::build(std::uint32_t frame, std::uint32_t setIndex) const {
+LightingSet LightingSetBuilder::build(std::uint32_t frame, std::uint32_t accumulation,
+                                      std::uint32_t setIndex) const {
     LightingSet set;
+    // Progressive parts shrink with the frame's place in the accumulation.
+    const double shrink = progressiveScale(settings_.progressiveAlpha, accumulation);
+    set.minDistance2 = minDistance_ * minDistance_;
+    if (settings_.clampCompensation == ClampCompensation::Shrink)
+        set.minDistance2 = float(double(set.minDistance2) * shrink);
+    const double radiusShrink = settings_.progressiveRadius ? shrink : 1.0;
     if (lights_.empty()) return set;
     sampleDirect(frame, setIndex, set);
     walkLightPaths(frame, setIndex, set);
     std::uint32_t shot = 0;
     auto photons = caustics_.shoot(frame, setIndex, shot, set.buildRays);
+    caustics_.shootFromVpls(frame, setIndex, set.indirect,
+                            std::uint32_t(std::max(0, settings_.indirectCausticPhotons)), photons,
+                            shot, set.buildRays);
     set.photonsShot = shot;
-    set.caustics = CausticGrid(std::move(photons), caustics_.radius());
+    set.caustics = CausticGrid(std::move(photons),
+                               float(double(caustics_.radius()) * std::sqrt(radiusShrink)));
     return set;
 }
 
@@ -82,14 +118,17 @@ void LightingSetBuilder::sampleDirect(std::uint32_t frame, std::uint32_t setInde
         v.normal = s.normal;
         v.position = s.isPoint ? s.position : scene_.offsetOrigin(s.position, s.normal);
         v.power = s.emitted / (s.pdf * float(n));
+        v.areaPdf = s.isPoint ? 0.0f : s.pdf;
         set.direct.push_back(v);
     }
 }
 
 void LightingSetBuilder::walkLightPaths(std::uint32_t frame, std::uint32_t setIndex,
                                         LightingSet& set) const {
-    const int maxLength = settings_.maxLightPathLength;
+    const int maxLength = maxLightPathLength();
+    const bool roulette = settings_.roulette;
     if (vplPaths_ == 0 || maxLength < 2) return;
+    set.indirectLight = true;
     const LightPathSampler sampler(settings_.seed, frame, SampleStream::VplPaths, setIndex,
                                    vplPaths_, std::uint32_t(maxLength));
     const float invPaths = 1.0f / float(vplPaths_);
@@ -111,42 +150,46 @@ void LightingSetBuilder::walkLightPaths(std::uint32_t frame, std::uint32_t setIn
             direction = Frame(light.normal).toWorld(squareToCosineHemisphere(uDir));
             beta = light.emitted * kPi / light.pdf;
         }
-        std::uint32_t diffuseBounces = 0;
+        std::uint32_t nonDeltaBounces = 0;
+        bool russianRoulette = false;  // past the paper's walk
         for (int vertex = 1; vertex < maxLength; ++vertex) {
             if (!scene_.intersect(origin, direction, std::numeric_limits<float>::infinity(), hit,
                                   set.buildRays))
                 break;
             const Lobes lobes = lobesAt(hit, -direction);
-            // No diffuse VPL on mirrors or glass: what they reflect is the caustic photons' job.
-            if (lobes.hasDiffuse()) {
-                Vpl v;
-                v.position = scene_.offsetOrigin(hit.position, lobes.faceNormal);
-                v.normal = lobes.normal;
-                v.power = beta * lobes.diffuse * (kInvPi * invPaths);
-                set.indirect.push_back(v);
-            }
+            // No VPL on mirrors or glass: what they reflect is the caustic photons' job.
+            if (lobes.hasNonDelta())
+                set.indirect.push_back(vplAt(scene_, hit, lobes, beta * invPaths));
             if (vertex + 1 >= maxLength) break;
             Lobe lobe;
             float probability = 0;
-            if (!chooseLobe(lobes, sampler.bounce(j, std::uint32_t(vertex), 2), lobe, probability))
-                break;
-            const glm::vec2 u(sampler.bounce(j, std::uint32_t(vertex), 0),
-                              sampler.bounce(j, std::uint32_t(vertex), 1));
-            if (lobe == Lobe::Diffuse) {
-                // Quasi-random Russian roulette by path index; the survivors carry the weight of
-                // the paths that stopped, so the estimate stays unbiased.
-                const std::uint32_t before = survivors(diffuseBounces),
-                                    after = survivors(diffuseBounces + 1);
-                ++diffuseBounces;
-                if (j >= after) break;
-                beta *= lobes.diffuse * (float(before) / float(after) / probability);
-                direction = Frame(lobes.normal).toWorld(squareToCosineHemisphere(u));
-                if (glm::dot(direction, lobes.faceNormal) <= 0) break;
-            } else {
-                glm::vec3 weight;
-                if (!sampleSpecular(lobes, lobe, u, direction, weight)) break;
-                beta *= weight / probability;
+            const auto v = std::uint32_t(vertex);
+            const float uLobe = sampler.bounce(j, v, 2);
+            if (!russianRoulette) {
+                if (!chooseLobe(lobes, uLobe, lobe, probability)) break;
+                if (!isDelta(lobe)) {
+                    // Keller's quasi-random walk (the paper's): a fixed number of paths, the
+                    // lowest indices, goes on at each non-delta bounce, carrying the weight of
+                    // those that stopped. Stratified and cheap, but it ends at the paper's
+                    // length; with roulette the paths still alive there go on by Russian
+                    // roulette instead, so that no bounce is left out.
+                    const std::uint32_t before = survivors(nonDeltaBounces),
+                                        after = survivors(nonDeltaBounces + 1);
+                    ++nonDeltaBounces;
+                    if (after == 0 && roulette) {
+                        russianRoulette = true;
+                    } else {
+                        if (j >= after) break;
+                        beta *= float(before) / float(after);
+                    }
+                }
             }
+            if (russianRoulette && !chooseLobe(lobes, uLobe, lobe, probability, true)) break;
+            glm::vec3 weight;
+            if (!sampleLobe(lobes, lobe, {sampler.bounce(j, v, 0), sampler.bounce(j, v, 1)},
+                            direction, weight))
+                break;
+            beta *= weight / probability;
             if (isBlack(beta) || !isFinite(beta)) break;
             origin = scene_.offsetOrigin(hit.position, lobes.faceNormal, direction);
         }

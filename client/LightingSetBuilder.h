@@ -12,19 +12,29 @@ namespace igi {
 
 /// Builds the set P_k and C_k of one interleaving identification k in one frame: direct-light
 /// samples on the lights, VPLs from quasi-random walks (Keller's instant radiosity), caustic
-/// photons. Deterministic in (seed, frame, k): every client builds the same set.
+/// photons from the lights and from the VPLs. Deterministic in (seed, frame, accumulation, k):
+/// every client builds the same set.
 class LightingSetBuilder {
   public:
     LightingSetBuilder(const TraceableScene& scene, const Lights& lights,
                        const RenderSettings& settings);
 
-    LightingSet build(std::uint32_t frame, std::uint32_t setIndex) const;
+    /// The set of k = setIndex in `frame`, the frame's place in its accumulation being
+    /// `accumulation` (TileAssign::accumulation: it shrinks the progressive radii).
+    LightingSet build(std::uint32_t frame, std::uint32_t accumulation,
+                      std::uint32_t setIndex) const;
+    LightingSet build(std::uint32_t frame, std::uint32_t setIndex) const {
+        return build(frame, 0, setIndex);
+    }
 
     /// Light paths per set: settings.vplPaths, or derived from settings.indirectVpls.
     std::uint32_t vplPaths() const { return vplPaths_; }
-    /// Paths still walking after d diffuse bounces (d = 0 .. maxLightPathLength - 2).
+    /// Paths still walking after d non-delta bounces in the paper's walk
+    /// (d = 0 .. maxLightPathLength - 2); with roulette, those of the last go on by roulette.
     std::uint32_t survivors(std::uint32_t diffuseBounces) const;
     bool causticsActive() const { return caustics_.active(); }
+    /// The most vertices a light path can have (the light's included).
+    int maxLightPathLength() const;
 
   private:
     void sampleDirect(std::uint32_t frame, std::uint32_t setIndex, LightingSet& set) const;
@@ -36,6 +46,7 @@ class LightingSetBuilder {
     CausticShooter caustics_;
     std::uint32_t vplPaths_ = 0;
     std::vector<std::uint32_t> survivors_;
+    float minDistance_ = 0;  ///< the connection bound's distance at accumulation 0
 };
 
 }  // namespace igi

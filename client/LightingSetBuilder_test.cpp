@@ -7,6 +7,7 @@
 #include "TestScenes.h"
 #include "math/Color.h"
 #include "math/Warp.h"
+#include "render/ProgressiveSchedule.h"
 
 namespace igi {
 namespace {
@@ -52,6 +53,7 @@ TEST(LightingSetBuilder, IndirectVplCountFollowsTheWantedNumber) {
     // A closed room: every light path hits something, so the count is what Keller's walk plans.
     Scene scene = diffuseRoomWithPointLight();
     scene.render.indirectVpls = 18;
+    scene.render.roulette = false;  // the paper's walk, whose count is fixed
     InProcessRenderer r(scene);
     const auto& builder = r.renderer().builder();
     std::uint32_t planned = 0;
@@ -60,6 +62,66 @@ TEST(LightingSetBuilder, IndirectVplCountFollowsTheWantedNumber) {
     EXPECT_GE(planned, 18u);
     EXPECT_EQ(builder.build(0, 0).indirect.size(), planned);
     EXPECT_EQ(builder.build(0, 0).direct.size(), 4u);
+}
+
+// With roulette the paper's walk is unchanged up to its length (the same VPLs, in the same
+// order), and the paths alive at its end go on by Russian roulette: on a grey surface a path
+// survives with probability equal to the albedo and keeps its flux, so the VPLs past the walk
+// all carry the power of the walk's last ones.
+TEST(LightingSetBuilder, RouletteContinuesThePapersWalk) {
+    Scene scene = diffuseRoomWithPointLight();
+    scene.render.indirectVpls = 18;
+    scene.render.roulette = false;
+    InProcessRenderer paper(scene);
+    scene.render.roulette = true;
+    InProcessRenderer roulette(scene);
+    std::size_t extra = 0, longest = 0;
+    for (std::uint32_t f = 0; f < 100; ++f) {
+        const LightingSet a = paper.renderer().builder().build(f, f % 9),
+                          b = roulette.renderer().builder().build(f, f % 9);
+        // The walk's VPLs come path by path: those of b that a also has are a's, in order.
+        std::size_t matched = 0;
+        for (const Vpl& v : b.indirect)
+            if (matched < a.indirect.size() && v.position == a.indirect[matched].position) {
+                ASSERT_EQ(v.power, a.indirect[matched].power);
+                ++matched;
+            }
+        ASSERT_EQ(matched, a.indirect.size()) << "frame " << f;
+        extra += b.indirect.size() - a.indirect.size();
+        longest = std::max(longest, b.indirect.size());
+    }
+    std::printf("roulette: %.2f VPLs per set past the paper's walk\n", double(extra) / 100);
+    EXPECT_GT(extra, 100u) << "paths go on past the walk";
+}
+
+// The caustic gather radius shrinks with the frame's place in the accumulation, as progressive
+// photon mapping says, and the bound's distance shrinks only when asked to.
+TEST(LightingSetBuilder, ProgressiveRadiusAndShrinkingClamp) {
+    Scene scene = testing::cornellBox(1.0f, /*glassBall=*/true);
+    InProcessRenderer r(scene);
+    const auto& builder = r.renderer().builder();
+    const LightingSet first = builder.build(5, 0, 2), later = builder.build(5, 40, 2);
+    const double scale = progressiveScale(scene.render.progressiveAlpha, 40);
+    EXPECT_LT(scale, 0.5);
+    EXPECT_NEAR(later.caustics.radius() / first.caustics.radius(), std::sqrt(scale), 1e-5);
+    EXPECT_EQ(later.minDistance2, first.minDistance2);  // Kollig-Keller: the bound stays
+    scene.render.clampCompensation = ClampCompensation::Shrink;
+    scene.render.progressiveRadius = false;
+    InProcessRenderer shrinking(scene);
+    const LightingSet a = shrinking.renderer().builder().build(5, 0, 2),
+                      b = shrinking.renderer().builder().build(5, 40, 2);
+    EXPECT_NEAR(b.minDistance2 / a.minDistance2, scale, 1e-5);
+    EXPECT_EQ(a.caustics.radius(), b.caustics.radius());
+}
+
+// The schedule itself: r_1^2 / r_0^2 = (1 + alpha) / 2, and it falls like i^(alpha - 1).
+TEST(ProgressiveSchedule, FollowsKnausAndZwicker) {
+    EXPECT_EQ(progressiveScale(0.7, 0), 1.0);
+    EXPECT_NEAR(progressiveScale(0.7, 1), 0.85, 1e-12);
+    EXPECT_NEAR(progressiveScale(0.7, 2), 0.85 * 2.7 / 3.0, 1e-12);
+    const double a = progressiveScale(2.0 / 3.0, 1000), b = progressiveScale(2.0 / 3.0, 8000);
+    EXPECT_NEAR(std::log(b / a) / std::log(8.0), -1.0 / 3.0, 0.01);
+    EXPECT_EQ(progressiveScale(0.0, 100), 1.0);  // no alpha: no shrinking
 }
 
 // A point light below a square mirror facing down, above a large diffuse floor: every photon
@@ -83,6 +145,7 @@ TEST(LightingSetBuilder, CausticPowerMatchesTheAnalyticFluxThroughAMirror) {
     const float intensity = 3.0f;
     scene.pointLights.push_back({"lamp", glm::vec3(0, height, 0), glm::vec3(intensity)});
     scene.render.causticPhotons = 20000;
+    scene.render.indirectCausticPhotons = 0;  // only the light's photons
     scene.image = {8, 8, 0};
     InProcessRenderer r(scene);
     ASSERT_TRUE(r.renderer().builder().causticsActive());

@@ -6,7 +6,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "IgiIntegrator.h"
+#include "ConnectionBound.h"
+#include "DeltaChain.h"
 #include "PixelSampler.h"
 #include "Scattering.h"
 #include "math/Color.h"
@@ -17,11 +18,8 @@ namespace igi {
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-constexpr std::uint32_t kDimsPerBounce = 7;  // lobe, 2 direction, 3 light sample, roulette
-
-float powerHeuristic(float a, float b) {
-    return a * a / (a * a + b * b);
-}
+// lobe, 2 direction, 3 light sample, roulette, the BRDF lobe of the direction
+constexpr std::uint32_t kDimsPerBounce = 8;
 
 }  // namespace
 
@@ -44,8 +42,8 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
     glm::vec3 direction = camera_.direction(float(x) + sampler.get(0), float(y) + sampler.get(1));
     glm::vec3 origin = camera_.origin();
     glm::vec3 radiance(0.0f), beta(1.0f);
-    bool lastWasDiffuse = false;
-    float lastCosinePdf = 0;  // solid-angle density of the last diffuse bounce's direction
+    bool lastWasNonDelta = false;
+    float lastPdf = 0;  // solid-angle density of the last non-delta bounce's direction
     SurfacePoint hit;
     for (int depth = 0; depth < settings_.maxPathLength; ++depth) {
         if (!scene_.intersect(origin, direction, kInfinity, hit, counters)) break;
@@ -53,11 +51,11 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
         const glm::vec3 le = emittedToward(hit, wo);
         if (!isBlack(le)) {
             float weight = 1.0f;
-            if (lastWasDiffuse) {  // the light could also have been sampled directly
+            if (lastWasNonDelta) {  // the light could also have been sampled directly
                 const float cosLight = glm::dot(wo, hit.geometricNormal);
                 const float lightPdf = lights_.areaPdf(hit.mesh, hit.triangle) * hit.distance *
                                        hit.distance / std::max(cosLight, 1e-8f);
-                weight = powerHeuristic(lastCosinePdf, lightPdf);
+                weight = powerHeuristic(lastPdf, lightPdf);
             }
             radiance += beta * le * weight;
         }
@@ -67,45 +65,29 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
         float probability = 0;
         if (!chooseLobe(lobes, sampler.get(dim), lobe, probability)) break;
         const glm::vec2 u(sampler.get(dim + 1), sampler.get(dim + 2));
-        if (lobe == Lobe::Diffuse) {
-            // Next-event estimation toward one light sample.
-            const LightSample ls =
-                lights_.sample(sampler.get(dim + 3), {sampler.get(dim + 4), sampler.get(dim + 5)});
-            const glm::vec3 shadowOrigin = scene_.offsetOrigin(hit.position, lobes.faceNormal);
-            if (ls.pdf > 0) {
-                const glm::vec3 toLight = ls.position - shadowOrigin;
-                const float d2 = glm::dot(toLight, toLight);
-                const float d = std::sqrt(d2);
-                const glm::vec3 w = toLight / d;
-                const float cosX = glm::dot(w, lobes.normal);
-                const float cosY = ls.isPoint ? 1.0f : -glm::dot(w, ls.normal);
-                if (d > 0 && cosX > 0 && cosY > 0 && glm::dot(w, lobes.faceNormal) > 0) {
-                    const glm::vec3 target =
-                        ls.isPoint ? ls.position : scene_.offsetOrigin(ls.position, ls.normal);
-                    const float distance = glm::length(target - shadowOrigin);
-                    if (!scene_.occluded(shadowOrigin, w, distance * (1.0f - 1e-4f), counters)) {
-                        const glm::vec3 f = lobes.diffuse * kInvPi / probability;
-                        if (ls.isPoint) {
-                            radiance += beta * f * ls.emitted * (cosX / (d2 * ls.pdf));
-                        } else {
-                            const float lightPdf = ls.pdf * d2 / cosY;  // solid angle
-                            const float weight = powerHeuristic(lightPdf, cosX * kInvPi);
-                            radiance += beta * f * ls.emitted * (cosX * weight / lightPdf);
-                        }
-                    }
-                }
-            }
-            direction = Frame(lobes.normal).toWorld(squareToCosineHemisphere(u));
-            const float cosX = glm::dot(direction, lobes.normal);
+        if (!isDelta(lobe)) {
+            // The non-delta lobes together (chosen with probability pNonDelta): next-event
+            // estimation toward one light sample and a direction from the BRDF, weighted
+            // against each other by multiple importance sampling.
+            const SurfaceBrdf& b = lobes.brdf;
+            const float pNonDelta = nonDeltaProbability(lobes);
+            radiance += beta / pNonDelta *
+                        directLight(hit, lobes, sampler.get(dim + 3),
+                                    {sampler.get(dim + 4), sampler.get(dim + 5)}, counters);
+            direction = b.sample(u, sampler.get(dim + 7), lobes.mirrorDirection);
+            const float cosX = glm::dot(direction, b.normal);
             if (cosX <= 0 || glm::dot(direction, lobes.faceNormal) <= 0) break;
-            beta *= lobes.diffuse / probability;
-            lastWasDiffuse = true;
-            lastCosinePdf = cosX * kInvPi;
+            const float pdf = b.pdf(direction, lobes.mirrorDirection);
+            if (!(pdf > 0)) break;
+            const glm::vec3 f = b.diffuse() + b.glossy(glm::dot(direction, lobes.mirrorDirection));
+            beta *= f * (cosX / (pdf * pNonDelta));
+            lastWasNonDelta = true;
+            lastPdf = pdf;
         } else {
             glm::vec3 weight;
-            if (!sampleSpecular(lobes, lobe, u, direction, weight)) break;
+            if (!sampleLobe(lobes, lobe, u, direction, weight)) break;
             beta *= weight / probability;
-            lastWasDiffuse = false;
+            lastWasNonDelta = false;
         }
         origin = scene_.offsetOrigin(hit.position, lobes.faceNormal, direction);
         if (depth >= 3) {  // Russian roulette once the path has had its main bounces
@@ -116,6 +98,31 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
         if (!isFinite(beta)) break;
     }
     return radiance;
+}
+
+glm::vec3 PathIntegrator::directLight(const SurfacePoint& hit, const Lobes& lobes, float uSelect,
+                                      glm::vec2 uPoint, RayCounters& counters) const {
+    const LightSample ls = lights_.sample(uSelect, uPoint);
+    if (!(ls.pdf > 0)) return glm::vec3(0.0f);
+    const glm::vec3 shadowOrigin = scene_.offsetOrigin(hit.position, lobes.faceNormal);
+    const glm::vec3 toLight = ls.position - shadowOrigin;
+    const float d2 = glm::dot(toLight, toLight);
+    const float d = std::sqrt(d2);
+    if (!(d > 0)) return glm::vec3(0.0f);
+    const glm::vec3 w = toLight / d;
+    const SurfaceBrdf& b = lobes.brdf;
+    const float cosX = glm::dot(w, b.normal);
+    const float cosY = ls.isPoint ? 1.0f : -glm::dot(w, ls.normal);
+    if (cosX <= 0 || cosY <= 0 || glm::dot(w, lobes.faceNormal) <= 0) return glm::vec3(0.0f);
+    const glm::vec3 target = ls.isPoint ? ls.position : scene_.offsetOrigin(ls.position, ls.normal);
+    const float distance = glm::length(target - shadowOrigin);
+    if (scene_.occluded(shadowOrigin, w, distance * (1.0f - 1e-4f), counters))
+        return glm::vec3(0.0f);
+    const glm::vec3 f = b.diffuse() + b.glossy(glm::dot(w, lobes.mirrorDirection));
+    if (ls.isPoint) return f * ls.emitted * (cosX / (d2 * ls.pdf));
+    const float lightPdf = ls.pdf * d2 / cosY;  // solid angle
+    const float weight = powerHeuristic(lightPdf, b.pdf(w, lobes.mirrorDirection));
+    return f * ls.emitted * (cosX * weight / lightPdf);
 }
 
 }  // namespace igi

@@ -4,15 +4,16 @@
 
 #include "CameraModel.h"
 #include "Lights.h"
+#include "Scattering.h"
 #include "TraceableScene.h"
 #include "render/RenderSettings.h"
 
 namespace igi {
 
 /// The brute-force reference: unidirectional path tracing over the same scene and materials,
-/// with next-event estimation on the diffuse lobe (multiple importance sampling against BSDF
-/// sampling for area lights) and Russian roulette. Glossy, mirror and glass bounces are sampled
-/// from the BSDF only. Converges to the answer IGI approximates.
+/// with next-event estimation on the non-delta lobes (Lambertian and glossy; multiple importance
+/// sampling against BRDF sampling for area lights) and Russian roulette. Mirror and glass
+/// bounces are sampled only. Converges to the answer IGI approximates.
 class PathIntegrator {
   public:
     PathIntegrator(const TraceableScene& scene, const Lights& lights,
@@ -25,6 +26,9 @@ class PathIntegrator {
   private:
     glm::vec3 tracePath(int x, int y, std::uint32_t pixelIndex, std::uint32_t sampleIndex,
                         RayCounters& counters) const;
+    /// One light sample's contribution through the non-delta BRDF, MIS-weighted.
+    glm::vec3 directLight(const SurfacePoint& hit, const Lobes& lobes, float uSelect,
+                          glm::vec2 uPoint, RayCounters& counters) const;
 
     const TraceableScene& scene_;
     const Lights& lights_;

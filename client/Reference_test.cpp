@@ -28,6 +28,7 @@ TEST(Reference, ConvergedIgiOfTheCornellBoxIsCloseToThePathTracedReference) {
     Image reference = testing::InProcessRenderer(scene).render(4);  // 1024 paths per pixel
 
     const ImageDifference d = compareImages(igi, reference, 20);
+
     // Measured: bias -0.8 %, 20 x 20 block error 2.7 % (much of it noise), SSIM 0.995,
     // relative MSE 4.8e-4. With the paper's path length of 4 the bias is about -3 %.
     EXPECT_LT(std::abs(d.meanRelativeBias), 0.02) << "IGI is brighter or darker than the reference";

@@ -12,6 +12,10 @@
 
 namespace igi {
 
+bool Lobes::hasDelta() const {
+    return !isBlack(reflection) || !isBlack(transmission);
+}
+
 Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
     Lobes l;
     const Material& m = *hit.material;
@@ -33,58 +37,115 @@ Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
         }
         return l;
     }
-    l.diffuse = hit.albedo;
-    if (m.reflection != Reflection::None) {
-        l.reflection = m.specular;
-        l.glossy = m.reflection == Reflection::Glossy;
-        l.exponent = m.phongExponent;
-    }
+    const bool glossy = m.reflection == Reflection::Glossy && m.phongExponent >= 0;
+    l.brdf = SurfaceBrdf::make(hit.albedo, glossy ? m.specular : glm::vec3(0.0f), m.phongExponent,
+                               l.normal);
+    if (m.reflection == Reflection::Mirror) l.reflection = m.specular;
     return l;
 }
 
-bool chooseLobe(const Lobes& l, float u, Lobe& lobe, float& probability) {
-    const float wd = meanComponent(l.diffuse), wr = meanComponent(l.reflection),
-                wt = meanComponent(l.transmission);
-    const float total = wd + wr + wt;
-    if (!(total > 0)) return false;
-    u *= total;
-    if (u < wd) {
-        lobe = Lobe::Diffuse;
-        probability = wd / total;
-    } else if (u < wd + wr || wt <= 0) {
-        lobe = Lobe::Reflection;
-        probability = wr / total;
-    } else {
-        lobe = Lobe::Transmission;
-        probability = wt / total;
+float lobeWeight(const Lobes& l, Lobe lobe) {
+    switch (lobe) {
+        case Lobe::Diffuse:
+            return meanComponent(l.brdf.kd);
+        case Lobe::Glossy:
+            return meanComponent(l.brdf.ks);
+        case Lobe::Reflection:
+            return meanComponent(l.reflection);
+        case Lobe::Transmission:
+            return meanComponent(l.transmission);
     }
-    return probability > 0;
+    return 0;
 }
 
-bool sampleSpecular(const Lobes& l, Lobe lobe, glm::vec2 u, glm::vec3& direction,
-                    glm::vec3& weight) {
-    if (lobe == Lobe::Transmission) {
-        direction = l.refractDirection;
-        weight = l.transmission;
-        return glm::dot(direction, l.faceNormal) < 0;
+namespace {
+
+float lobeMaxWeight(const Lobes& l, Lobe lobe) {
+    switch (lobe) {
+        case Lobe::Diffuse:
+            return maxComponent(l.brdf.kd);
+        case Lobe::Glossy:
+            return maxComponent(l.brdf.ks);
+        case Lobe::Reflection:
+            return maxComponent(l.reflection);
+        case Lobe::Transmission:
+            return maxComponent(l.transmission);
     }
-    if (!l.glossy) {
-        direction = l.mirrorDirection;
-        weight = l.reflection;
-        return glm::dot(direction, l.faceNormal) > 0;
+    return 0;
+}
+
+bool chooseAmong(const Lobes& l, const Lobe* lobes, int count, float u, Lobe& lobe,
+                 float& probability, bool roulette) {
+    float weights[4], total = 0;
+    int lastWithWeight = -1;
+    for (int i = 0; i < count; ++i) {
+        // Roulette survives by the largest channel, so that no channel's throughput grows: by
+        // the mean, a red wall would multiply the red of the paths that survive it by 2.5, and
+        // the rare long red paths would dominate the estimate (a heavy tail, measured +4 % in
+        // the red of a closed red sphere of albedo 0.8 after 256 frames).
+        weights[i] =
+            std::max(0.0f, roulette ? lobeMaxWeight(l, lobes[i]) : lobeWeight(l, lobes[i]));
+        total += weights[i];
+        if (weights[i] > 0) lastWithWeight = i;
     }
-    // Normalized Phong: f = Ks (n + 2) / (2 pi) cos^n(alpha), sampled with pdf
-    // (n + 1) / (2 pi) cos^n(alpha) about the mirror direction, so f cos / pdf is below.
-    direction = Frame(l.mirrorDirection).toWorld(squareToPhongLobe(u, l.exponent));
-    const float cosTheta = glm::dot(direction, l.normal);
-    if (cosTheta <= 0 || glm::dot(direction, l.faceNormal) <= 0) return false;
-    weight = l.reflection * ((l.exponent + 2.0f) / (l.exponent + 1.0f) * cosTheta);
+    if (!(total > 0)) return false;
+    // Under roulette the weights are the probabilities (the rest absorbs) unless they exceed 1.
+    const float scale = roulette ? std::max(1.0f, total) : total;
+    float edge = 0;
+    for (int i = 0; i < count; ++i) {
+        if (!(weights[i] > 0)) continue;
+        edge += weights[i] / scale;
+        if (u < edge) {
+            lobe = lobes[i];
+            probability = weights[i] / scale;
+            return true;
+        }
+    }
+    // The probabilities sum to one up to rounding: u above the last edge is the last lobe.
+    if (roulette && scale == 1.0f && total < 1.0f) return false;  // absorbed
+    lobe = lobes[lastWithWeight];
+    probability = weights[lastWithWeight] / scale;
     return true;
 }
 
-glm::vec3 glossyBrdf(const Lobes& l, glm::vec3 wi) {
-    const float cosAlpha = std::max(0.0f, glm::dot(wi, l.mirrorDirection));
-    return l.reflection * ((l.exponent + 2.0f) / (2.0f * kPi) * std::pow(cosAlpha, l.exponent));
+}  // namespace
+
+bool chooseLobe(const Lobes& l, float u, Lobe& lobe, float& probability, bool roulette) {
+    static constexpr Lobe kAll[] = {Lobe::Diffuse, Lobe::Glossy, Lobe::Reflection,
+                                    Lobe::Transmission};
+    return chooseAmong(l, kAll, 4, u, lobe, probability, roulette);
+}
+
+bool chooseDeltaLobe(const Lobes& l, float u, Lobe& lobe, float& probability, bool roulette) {
+    static constexpr Lobe kDelta[] = {Lobe::Reflection, Lobe::Transmission};
+    return chooseAmong(l, kDelta, 2, u, lobe, probability, roulette);
+}
+
+bool sampleLobe(const Lobes& l, Lobe lobe, glm::vec2 u, glm::vec3& direction, glm::vec3& weight) {
+    switch (lobe) {
+        case Lobe::Transmission:
+            direction = l.refractDirection;
+            weight = l.transmission;
+            return glm::dot(direction, l.faceNormal) < 0;
+        case Lobe::Reflection:
+            direction = l.mirrorDirection;
+            weight = l.reflection;
+            return glm::dot(direction, l.faceNormal) > 0;
+        case Lobe::Diffuse:
+            direction = Frame(l.normal).toWorld(squareToCosineHemisphere(u));
+            weight = l.brdf.kd;
+            return glm::dot(direction, l.normal) > 0 && glm::dot(direction, l.faceNormal) > 0;
+        case Lobe::Glossy: {
+            // Normalized Phong: f = Ks (n + 2) / (2 pi) cos^n(alpha), sampled with pdf
+            // (n + 1) / (2 pi) cos^n(alpha) about the mirror direction, so f cos / pdf is below.
+            direction = Frame(l.mirrorDirection).toWorld(squareToPhongLobe(u, l.brdf.exponent));
+            const float cosTheta = glm::dot(direction, l.normal);
+            if (cosTheta <= 0 || glm::dot(direction, l.faceNormal) <= 0) return false;
+            weight = l.brdf.ks * ((l.brdf.exponent + 2.0f) / (l.brdf.exponent + 1.0f) * cosTheta);
+            return true;
+        }
+    }
+    return false;
 }
 
 }  // namespace igi

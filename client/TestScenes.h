@@ -147,7 +147,7 @@ inline Scene cornellBox(float scale, bool glassBall = false) {
 /// NaN or -inf).
 inline std::size_t countNonFinite(const TileChannels& c) {
     std::size_t bad = 0;
-    for (const auto* plane : {&c.irradiance, &c.reflectance, &c.normal, &c.unfiltered})
+    for (const auto* plane : {&c.irradiance, &c.reflectance, &c.normal, &c.unfiltered, &c.glossy})
         for (const glm::vec3& v : *plane) bad += isFinite(v) ? 0 : 1;
     for (float d : c.depth) bad += std::isnan(d) || d == -std::numeric_limits<float>::infinity();
     return bad;
@@ -169,14 +169,15 @@ class InProcessRenderer {
         const int w = scene_.image.width, h = scene_.image.height;
         const auto tiles = makeTiles(w, h, s.interleaveX, s.interleaveY, s.tileSize);
         Accumulator accumulator;
-        accumulator.reset(w, h);
+        accumulator.reset(w, h, s.progressiveFilter);
         FrameBuffer frame;
-        std::vector<glm::vec3> filtered(std::size_t(w) * h);
+        std::vector<glm::vec3> filtered(std::size_t(w) * h), unfiltered(filtered.size());
         for (int f = 0; f < frames; ++f) {
             frame.reset(w, h);
             for (const Tile& t : tiles) {
-                const proto::TileResult r =
-                    renderer_.renderNow(pool_, firstFrame + std::uint32_t(f), t);
+                // The frame's place in the accumulation, as the master would send it.
+                const proto::TileResult r = renderer_.renderNow(
+                    pool_, firstFrame + std::uint32_t(f), t, s.accumulate ? std::uint32_t(f) : 0);
                 frame.scatter(t, s.interleaveX, s.interleaveY, r.channels);
                 shadowRays_ += r.stats.shadowRays;
                 nonFinite_ += countNonFinite(r.channels);
@@ -185,7 +186,8 @@ class InProcessRenderer {
                                     {s.effectiveFilterX(), s.effectiveFilterY(),
                                      s.filterDepthThreshold, s.filterNormalThreshold},
                                     0, h, filtered);
-            accumulator.addRows(filtered, 0, h);
+            compositeUnfilteredRows(frame, 0, h, unfiltered);
+            accumulator.addRows(filtered, unfiltered, 0, h);
             accumulator.endFrame();
         }
         Image image(w, h);

@@ -14,6 +14,7 @@ constexpr int kChunkPixels = 64;  // small enough to balance load, large enough 
 
 struct TileRenderer::TileJob {
     std::uint32_t frame = 0;
+    std::uint32_t accumulation = 0;
     std::uint32_t tileId = 0;
     Tile tile;
     TileChannels channels;
@@ -32,13 +33,14 @@ TileRenderer::TileRenderer(const TraceableScene& scene, const SceneState& state,
       lights_(scene, state.pointLights),
       builder_(scene, lights_, settings),
       cache_(builder_),
-      igi_(scene, settings, camera_),
+      igi_(scene, lights_, settings, camera_),
       path_(scene, lights_, settings, camera_) {}
 
-void TileRenderer::render(ThreadPool& pool, std::uint32_t frame, std::uint32_t tileId,
-                          const Tile& tile, Done done) {
+void TileRenderer::render(ThreadPool& pool, std::uint32_t frame, std::uint32_t accumulation,
+                          std::uint32_t tileId, const Tile& tile, Done done) {
     auto job = std::make_shared<TileJob>();
     job->frame = frame;
+    job->accumulation = accumulation;
     job->tileId = tileId;
     job->tile = tile;
     job->done = std::move(done);
@@ -60,10 +62,11 @@ void TileRenderer::render(ThreadPool& pool, std::uint32_t frame, std::uint32_t t
     }
 }
 
-proto::TileResult TileRenderer::renderNow(ThreadPool& pool, std::uint32_t frame, const Tile& tile) {
+proto::TileResult TileRenderer::renderNow(ThreadPool& pool, std::uint32_t frame, const Tile& tile,
+                                          std::uint32_t accumulation) {
     std::promise<proto::TileResult> promise;
     auto future = promise.get_future();
-    render(pool, frame, 0, tile,
+    render(pool, frame, accumulation, 0, tile,
            [&promise](proto::TileResult&& r) { promise.set_value(std::move(r)); });
     return future.get();
 }
@@ -82,7 +85,8 @@ void TileRenderer::renderChunk(TileJob& job, int begin, int end) {
         }
     } else {
         bool built = false;
-        const auto set = cache_.get(job.frame, std::uint32_t(job.tile.setIndex(n)), built);
+        const auto set =
+            cache_.get(job.frame, job.accumulation, std::uint32_t(job.tile.setIndex(n)), built);
         if (built) {
             local.setsBuilt = 1;
             counters += set->buildRays;
@@ -98,6 +102,7 @@ void TileRenderer::renderChunk(TileJob& job, int begin, int end) {
             out.normal[i] = r.normal;
             out.depth[i] = r.depth;
             out.unfiltered[i] = r.unfiltered;
+            out.glossy[i] = r.glossy;
         }
     }
     const float seconds =

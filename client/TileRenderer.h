@@ -29,14 +29,17 @@ class TileRenderer {
     using Done = std::function<void(proto::TileResult&&)>;
 
     /// Queues the tile's chunks on `pool`; `done` runs on the thread that finishes the last one.
-    void render(ThreadPool& pool, std::uint32_t frame, std::uint32_t tileId, const Tile& tile,
-                Done done);
+    /// `accumulation` is the frame's place in its accumulation (TileAssign::accumulation).
+    void render(ThreadPool& pool, std::uint32_t frame, std::uint32_t accumulation,
+                std::uint32_t tileId, const Tile& tile, Done done);
 
     /// Renders a tile on `pool` and waits for it (tests and tools).
-    proto::TileResult renderNow(ThreadPool& pool, std::uint32_t frame, const Tile& tile);
+    proto::TileResult renderNow(ThreadPool& pool, std::uint32_t frame, const Tile& tile,
+                                std::uint32_t accumulation = 0);
 
     LightingCache& cache() { return cache_; }
     const LightingSetBuilder& builder() const { return builder_; }
+    const Lights& lights() const { return lights_; }
 
   private:
     struct TileJob;

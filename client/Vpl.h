@@ -4,15 +4,35 @@
 
 namespace igi {
 
-/// A virtual point light: a point on a light source or a diffuse vertex of a light path.
-/// It sends radiant intensity power * cos(theta) (surface VPL, theta from `normal`) or `power`
-/// in every direction (omni: a point light), so the irradiance it gives a point at distance d
-/// whose normal makes angle theta_x with it is power * cos(theta) * cos(theta_x) / d^2.
+/// A virtual point light: a point on a light source (a light sample) or a non-delta vertex of a
+/// light path (an indirect VPL).
+///
+/// Toward a unit direction w it sends the radiant intensity
+///   (power + glossyPower * cos^exponent(w, mirror)) * cos(theta),
+/// theta measured from `normal` (for an omni light sample, a point light: `power` alone), so a
+/// point at distance d whose normal makes the angle theta_x with -w receives that times
+/// cos(theta_x) / d^2. For an indirect VPL `power` is the flux that arrived times kd / pi and
+/// glossyPower that flux times the Phong lobe's ks (n + 2) / (2 pi): the VPL carries its
+/// surface's BRDF, evaluated toward whatever it lights.
 struct Vpl {
     glm::vec3 position{0.0f};  ///< already moved off its surface: shadow rays end here
     glm::vec3 normal{0.0f};
     glm::vec3 power{0.0f};
     bool omni = false;
+
+    // Indirect VPLs on glossy surfaces.
+    glm::vec3 glossyPower{0.0f};
+    float exponent = 0;
+    glm::vec3 mirror{0.0f};  ///< the direction the light came from, mirrored about `normal`
+    /// Its surface's SurfaceBrdf::diffuseShare and glossyShare, for the connection bound.
+    float diffuseShare = 1;
+    float glossyShare = 0;
+
+    /// Light samples on area lights: the area density with which the point was chosen, for
+    /// multiple importance sampling against BRDF sampling (0 for point lights).
+    float areaPdf = 0;
+
+    bool glossy() const { return glossyShare > 0; }
 };
 
 }  // namespace igi

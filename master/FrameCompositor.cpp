@@ -7,6 +7,10 @@ namespace {
 
 constexpr int kRowsPerBlock = 16;
 
+bool withdrawBlur(const RenderSettings& s) {
+    return s.accumulate && s.progressiveFilter;
+}
+
 }  // namespace
 
 FrameCompositor::FrameCompositor(int width, int height, const RenderSettings& settings,
@@ -18,8 +22,9 @@ FrameCompositor::FrameCompositor(int width, int height, const RenderSettings& se
               settings.filterDepthThreshold, settings.filterNormalThreshold},
       pool_(pool),
       filtered_(width, height),
+      unfiltered_(withdrawBlur(settings) ? width : 0, withdrawBlur(settings) ? height : 0),
       shown_(width, height) {
-    accumulator_.reset(width, height);
+    accumulator_.reset(width, height, withdrawBlur(settings));
 }
 
 template <typename F>
@@ -36,14 +41,21 @@ const Image& FrameCompositor::composite(const FrameBuffer& frame) {
         discontinuityFilterRows(frame, filter_, begin, end, filtered_.pixels);
     });
     if (!accumulate_) return filtered_;
-    forRowBlocks([&](int begin, int end) { accumulator_.addRows(filtered_.pixels, begin, end); });
+    forRowBlocks([&](int begin, int end) {
+        if (accumulator_.withdrawsBlur()) {
+            compositeUnfilteredRows(frame, begin, end, unfiltered_.pixels);
+            accumulator_.addRows(filtered_.pixels, unfiltered_.pixels, begin, end);
+        } else {
+            accumulator_.addRows(filtered_.pixels, begin, end);
+        }
+    });
     accumulator_.endFrame();
     forRowBlocks([&](int begin, int end) { accumulator_.meanRows(shown_.pixels, begin, end); });
     return shown_;
 }
 
 void FrameCompositor::resetAccumulation() {
-    accumulator_.reset(width_, height_);
+    accumulator_.reset(width_, height_, accumulator_.withdrawsBlur());
 }
 
 }  // namespace igi

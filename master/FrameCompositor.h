@@ -38,6 +38,7 @@ class FrameCompositor {
     ThreadPool& pool_;
     Accumulator accumulator_;
     Image filtered_;
+    Image unfiltered_;  ///< the frame without the buffer, for the progressive filter
     Image shown_;
 };
 

@@ -252,6 +252,13 @@ void Master::openFramesAsNeeded() {
         record->buffer.reset(scene_.image.width, scene_.image.height);
         record->opened = Clock::now();
         record->epoch = start.epoch;
+        // Accumulation restarts with every epoch (finishReadyFrames), so a frame's place in
+        // it is known when it opens.
+        if (openedEpoch_ != std::int64_t(start.epoch)) {
+            openedEpoch_ = start.epoch;
+            epochFirstFrame_ = f;
+        }
+        record->accumulation = scene_.render.accumulate ? f - epochFirstFrame_ : 0;
         frames_[f] = std::move(record);
     }
 }
@@ -281,7 +288,9 @@ void Master::dispatch() {
             msg.height = std::uint16_t(t.height);
             msg.kx = std::uint16_t(t.kx);
             msg.ky = std::uint16_t(t.ky);
-            s.connection->send(msg, a->frame, frames_.at(a->frame)->epoch);
+            const FrameRecord& record = *frames_.at(a->frame);
+            msg.accumulation = record.accumulation;
+            s.connection->send(msg, a->frame, record.epoch);
         }
     }
 }

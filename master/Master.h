@@ -61,7 +61,10 @@ class Master {
     struct FrameRecord {
         FrameBuffer buffer;
         std::chrono::steady_clock::time_point opened;
-        std::uint32_t epoch = 0;   ///< the scene state every tile of it renders
+        std::uint32_t epoch = 0;  ///< the scene state every tile of it renders
+        /// Its place in the accumulation (TileAssign::accumulation): frames since its epoch
+        /// began, or 0 without accumulation.
+        std::uint32_t accumulation = 0;
         int decoding = 0;          ///< tile results being decoded on the pool
         double decodeSeconds = 0;  ///< pool time spent decoding and scattering its tiles
     };
@@ -111,6 +114,8 @@ class Master {
     std::unique_ptr<ControlServer> control_;
     boost::asio::signal_set signals_;
     std::int64_t compositedEpoch_ = -1;  ///< epoch of the frame last composited
+    std::int64_t openedEpoch_ = -1;      ///< epoch of the frame last opened
+    std::uint32_t epochFirstFrame_ = 0;  ///< the first frame of openedEpoch_
     std::uint32_t framesInFlight_ = 2;   ///< frames open at once (from the image size)
     /// A snapshot request waits for the first frame opened after it, so that the image shows
     /// every change commanded before it (frames already open keep their older scene).

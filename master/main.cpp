@@ -89,6 +89,18 @@ int main(int argc, char** argv) {
     auto* sppOpt = app.add_option("--spp", spp, "path tracer samples per pixel per frame");
     auto* interleaveOpt = app.add_option("--interleave", interleave, "interleaving pattern NxM");
     auto* filterOpt = app.add_option("--filter", filter, "discontinuity buffer size NxM");
+    std::string converge, roulette, compensation;
+    auto* convergeOpt =
+        app.add_option("--converge", converge,
+                       "on: accumulation converges (every mean below on); off: the paper's "
+                       "estimator")
+            ->check(CLI::IsMember({"on", "off"}));
+    auto* rouletteOpt =
+        app.add_option("--roulette", roulette, "on: light paths end by Russian roulette")
+            ->check(CLI::IsMember({"on", "off"}));
+    auto* compensationOpt = app.add_option("--clamp-compensation", compensation,
+                                           "what restores the energy the VPL bound removes")
+                                ->check(CLI::IsMember({"off", "shrink", "kollig-keller"}));
     struct Numeric {
         const char* flag;
         const char* key;
@@ -113,6 +125,12 @@ int main(int argc, char** argv) {
         {"--filter-normal-threshold", "filter_normal_threshold", false,
          "normal cosine below which neighbours split"},
         {"--max-path-length", "max_path_length", true, "path tracer's maximum path length"},
+        {"--roulette-max-length", "roulette_max_length", true,
+         "safety cap on light path vertices under roulette"},
+        {"--indirect-caustic-photons", "indirect_caustic_photons", true,
+         "photons shot from the VPLs at mirrors and glass per set"},
+        {"--progressive-alpha", "progressive_alpha", false,
+         "how fast the caustic radius (and a shrinking clamp) shrinks, in (0, 1)"},
         {"--tile-size", "tile_size", true, "tile edge in pixels of one k"},
         {"--seed", "seed", true, "session seed of every random bit vector"},
     };
@@ -148,6 +166,9 @@ int main(int argc, char** argv) {
         if (sppOpt->count()) render["path_samples"] = spp;
         if (interleaveOpt->count()) render["interleave"] = parsePair(interleave, "--interleave");
         if (filterOpt->count()) render["filter"] = parsePair(filter, "--filter");
+        if (convergeOpt->count()) render["converge"] = converge == "on";
+        if (rouletteOpt->count()) render["roulette"] = roulette == "on";
+        if (compensationOpt->count()) render["clamp_compensation"] = compensation;
         for (const auto& n : numerics) {
             if (!n.option->count()) continue;
             if (n.integer && n.value != std::floor(n.value))

@@ -154,7 +154,7 @@ class PlaneWriter {
     std::size_t count_;
     std::size_t size_ = 0;
     std::uint32_t sent_ = 0;
-    float references_[3] = {};
+    float references_[4] = {};
     std::size_t referenceCount_ = 0;
 };
 
@@ -194,6 +194,7 @@ std::uint32_t bytesPerPixel(std::uint32_t mask) {
     if (mask & kNormal) n += kNormalBytes;
     if (mask & kDepth) n += kDepthBytes;
     if (mask & kUnfiltered) n += kUnfilteredBytes;
+    if (mask & kGlossy) n += kGlossyBytes;
     return n;
 }
 
@@ -207,6 +208,7 @@ void writeTileChannels(ByteWriter& out, const TileChannels& channels) {
     checkPlaneSize(channels.normal.size(), count, "normal");
     checkPlaneSize(channels.depth.size(), count, "depth");
     checkPlaneSize(channels.unfiltered.size(), count, "unfiltered");
+    checkPlaneSize(channels.glossy.size(), count, "glossy");
     const std::uint32_t planes = count == 0 ? 0 : channels.mask();
 
     ThreadScratch scratch;
@@ -234,6 +236,11 @@ void writeTileChannels(ByteWriter& out, const TileChannels& channels) {
         const float scale = largestComponent(channels.unfiltered);
         encodeSharedExponents(channels.unfiltered, scale, w.words());
         w.add<kUnfilteredBytes>(kUnfiltered, 0, true, scale);
+    }
+    if (planes & kGlossy) {
+        const float scale = largestComponent(channels.glossy);
+        encodeSharedExponents(channels.glossy, scale, w.words());
+        w.add<kGlossyBytes>(kGlossy, 0, true, scale);
     }
 
     out.u32(static_cast<std::uint32_t>(count));
@@ -264,10 +271,11 @@ TileChannels readTileChannels(ByteReader& in) {
                 hex(planes));
     if (count == 0 && planes != 0) in.fail("an empty tile names planes " + hex(planes));
 
-    float irradianceScale = 0, depthMin = 0, unfilteredScale = 0;
+    float irradianceScale = 0, depthMin = 0, unfilteredScale = 0, glossyScale = 0;
     if (sent & kIrradiance) irradianceScale = readReference(in, "irradiance");
     if (sent & kDepth) depthMin = readReference(in, "depth");
     if (sent & kUnfiltered) unfilteredScale = readReference(in, "unfiltered");
+    if (sent & kGlossy) glossyScale = readReference(in, "glossy");
 
     ThreadScratch scratch;
     if (sent != 0) {
@@ -286,6 +294,7 @@ TileChannels readTileChannels(ByteReader& in) {
     if (sent & kDepth) decodeLogDepths(r.next<kDepthBytes>(), depthMin, channels.depth);
     if (sent & kUnfiltered)
         decodeSharedExponents(r.next<kUnfilteredBytes>(), unfilteredScale, channels.unfiltered);
+    if (sent & kGlossy) decodeSharedExponents(r.next<kGlossyBytes>(), glossyScale, channels.glossy);
     return channels;
 }
 

@@ -17,6 +17,7 @@ constexpr std::uint32_t kReflectanceBytes = 3;  // 3 x sRGB u8
 constexpr std::uint32_t kNormalBytes = 2;       // octahedral 2 x u8
 constexpr std::uint32_t kDepthBytes = 2;        // log2 u16
 constexpr std::uint32_t kUnfilteredBytes = 4;   // shared-exponent RGB
+constexpr std::uint32_t kGlossyBytes = 4;       // shared-exponent RGB
 std::uint32_t bytesPerPixel(std::uint32_t mask);
 
 /// Quantizes the planes of `channels`, lays them out planar (and, within a plane, one byte of

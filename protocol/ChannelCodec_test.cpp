@@ -56,7 +56,8 @@ double relativeMse(const std::vector<glm::vec3>& ref, const std::vector<glm::vec
 
 std::vector<glm::vec3> combined(const TileChannels& c) {
     std::vector<glm::vec3> p(c.count);
-    for (int i = 0; i < c.count; ++i) p[i] = c.reflectance[i] * c.irradiance[i] + c.unfiltered[i];
+    for (int i = 0; i < c.count; ++i)
+        p[i] = c.reflectance[i] * c.irradiance[i] + c.glossy[i] + c.unfiltered[i];
     return p;
 }
 
@@ -94,6 +95,7 @@ TileChannels realisticTile(float magnitude, std::uint32_t seed, std::vector<bool
             c.irradiance[i] = glm::vec3(0.0f);
         }
         if (i % 53 == 0) c.unfiltered[i] = magnitude * glm::vec3(3.0f * u(rng), 2.0f, 1.0f);
+        c.glossy[i] = magnitude * 0.2f * glm::vec3(u(rng), 0.5f, 0.25f);
     }
     return c;
 }
@@ -156,6 +158,7 @@ TEST(ChannelCodec, ZeroPlanesAreLeftOutAndComeBackAsDefaults) {
     roundTrip(c, &full);
     EXPECT_EQ(sentMask(c), kAllChannels);
     std::fill(c.unfiltered.begin(), c.unfiltered.end(), glm::vec3(0.0f));
+    std::fill(c.glossy.begin(), c.glossy.end(), glm::vec3(0.0f));
     std::fill(c.depth.begin(), c.depth.end(), INFINITY);
     std::fill(c.normal.begin(), c.normal.end(), glm::vec3(0.0f));
     EXPECT_EQ(sentMask(c), kIrradiance | kReflectance);
@@ -254,7 +257,7 @@ TEST(ChannelCodec, DecoderValidatesCountMasksReferencesAndSizes) {
     setU32(bad, 0, 65);  // count disagrees with the compressed size
     EXPECT_NE(decodeError(bad).find("declares"), std::string::npos) << decodeError(bad);
     bad = good;
-    setU32(bad, 4, kAllChannels | (1u << 5));  // planes
+    setU32(bad, 4, kAllChannels | (1u << 6));  // planes
     EXPECT_NE(decodeError(bad).find("unknown channel"), std::string::npos) << decodeError(bad);
     bad = good;
     setU32(bad, 4, kAllChannels & ~kNormal);  // sent is no longer a subset
@@ -287,8 +290,10 @@ std::uint32_t planeCode(std::uint32_t bit, const TileChannels& c, int i, float r
         }
         case kDepth:
             return reference::encodeLogDepth(c.depth[i], reference);
-        default:
+        case kUnfiltered:
             return reference::encodeSharedExponent(c.unfiltered[i], reference);
+        default:
+            return reference::encodeSharedExponent(c.glossy[i], reference);
     }
 }
 
@@ -310,15 +315,16 @@ float smallestDepth(const std::vector<float>& depth) {
 /// writeTileChannels as the format describes it, one pixel and one byte at a time.
 std::vector<std::uint8_t> encode(const TileChannels& c) {
     const std::uint32_t planes = c.count == 0 ? 0 : c.mask();
-    const std::uint32_t bits[] = {kIrradiance, kReflectance, kNormal, kDepth, kUnfiltered};
-    const std::uint32_t bytes[] = {4, 3, 2, 2, 4};
+    const std::uint32_t bits[] = {kIrradiance, kReflectance, kNormal, kDepth, kUnfiltered, kGlossy};
+    const std::uint32_t bytes[] = {4, 3, 2, 2, 4, 4};
     std::uint32_t sent = 0;
     std::vector<float> references;
     std::vector<std::uint8_t> raw;
-    for (int p = 0; p < 5; ++p) {
+    for (int p = 0; p < 6; ++p) {
         if (!(planes & bits[p])) continue;
         const float ref = bits[p] == kIrradiance   ? largest(c.irradiance)
                           : bits[p] == kUnfiltered ? largest(c.unfiltered)
+                          : bits[p] == kGlossy     ? largest(c.glossy)
                           : bits[p] == kDepth      ? smallestDepth(c.depth)
                                                    : 0.0f;
         const std::uint32_t none = bits[p] == kDepth ? kDepthInfinite : 0u;
@@ -352,6 +358,7 @@ TileChannels decode(const std::vector<std::uint8_t>& bytes) {
     const float scale = (sent & kIrradiance) ? in.f32() : 0.0f;
     const float d0 = (sent & kDepth) ? in.f32() : 0.0f;
     const float unfilteredScale = (sent & kUnfiltered) ? in.f32() : 0.0f;
+    const float glossyScale = (sent & kGlossy) ? in.f32() : 0.0f;
     std::vector<std::uint8_t> raw;
     if (sent != 0) {
         const auto frame = in.blob();
@@ -394,9 +401,14 @@ TileChannels decode(const std::vector<std::uint8_t>& bytes) {
             c.depth[i] = reference::decodeLogDepth(static_cast<std::uint16_t>(word(i, 2)), d0);
         offset += 2 * count;
     }
-    if (sent & kUnfiltered)
+    if (sent & kUnfiltered) {
         for (std::uint32_t i = 0; i < count; ++i)
             c.unfiltered[i] = reference::decodeSharedExponent(word(i, 4), unfilteredScale);
+        offset += 4 * count;
+    }
+    if (sent & kGlossy)
+        for (std::uint32_t i = 0; i < count; ++i)
+            c.glossy[i] = reference::decodeSharedExponent(word(i, 4), glossyScale);
     return c;
 }
 
@@ -416,6 +428,7 @@ void expectSameBits(const TileChannels& a, const TileChannels& b) {
     EXPECT_TRUE(sameBits(a.normal, b.normal));
     EXPECT_TRUE(sameBits(a.depth, b.depth));
     EXPECT_TRUE(sameBits(a.unfiltered, b.unfiltered));
+    EXPECT_TRUE(sameBits(a.glossy, b.glossy));
 }
 
 /// Tiles of every kind: realistic ones at extreme magnitudes, odd sizes, a large one (beyond
@@ -477,7 +490,7 @@ TEST(ChannelCodec, ReadsArbitraryCodesAsThePlainDecoderDoes) {
         w.u32(count);
         w.u32(kAllChannels);
         w.u32(kAllChannels);
-        for (float r : {3.5f, 0.25f, 1e-30f}) w.f32(r);
+        for (float r : {3.5f, 0.25f, 1e-30f, 7.0f}) w.f32(r);
         w.blob(zstdCompress(raw, 1));
         ByteReader in(bytes, "tile");
         expectSameBits(readTileChannels(in), plain::decode(bytes));

@@ -96,6 +96,7 @@ void write(ByteWriter& out, const SceneReady& m) {
 void write(ByteWriter& out, const TileAssign& m) {
     out.u32(m.tileId);
     for (std::uint16_t v : {m.x0, m.y0, m.width, m.height, m.kx, m.ky}) out.u16(v);
+    out.u32(m.accumulation);
 }
 
 void write(ByteWriter& out, const TileResult& m) {
@@ -203,6 +204,7 @@ TileAssign readTileAssign(ByteReader& in) {
     m.height = in.u16();
     m.kx = in.u16();
     m.ky = in.u16();
+    m.accumulation = in.u32();
     if (m.width == 0 || m.height == 0)
         in.fail("empty region " + std::to_string(m.width) + " x " + std::to_string(m.height));
     if (std::uint32_t{m.x0} + m.width > 65535 || std::uint32_t{m.y0} + m.height > 65535)

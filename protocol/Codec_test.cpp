@@ -63,6 +63,7 @@ void expectSame(const TileAssign& a, const TileAssign& b) {
     EXPECT_EQ(a.height, b.height);
     EXPECT_EQ(a.kx, b.kx);
     EXPECT_EQ(a.ky, b.ky);
+    EXPECT_EQ(a.accumulation, b.accumulation);
 }
 void expectNear(glm::vec3 a, glm::vec3 b, float rel) {
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], rel * std::max(1.0f, std::abs(a[i])));
@@ -162,7 +163,7 @@ TEST(Codec, TypeOfMatchesTheTypeNumbers) {
 TEST(Codec, HeaderLayoutIsLittleEndianAsDocumented) {
     const auto bytes = encodeMessage(Heartbeat{}, 0x01020304, 0x0A0B0C0D);
     ASSERT_EQ(bytes.size(), kHeaderSize);
-    const std::uint8_t expected[kHeaderSize] = {'I',  'G',  'I',  'P',  1, 0, 7, 0, 4, 3, 2, 1,
+    const std::uint8_t expected[kHeaderSize] = {'I',  'G',  'I',  'P',  2, 0, 7, 0, 4, 3, 2, 1,
                                                 0x0D, 0x0C, 0x0B, 0x0A, 0, 0, 0, 0, 0, 0, 0, 0};
     EXPECT_EQ(0, std::memcmp(bytes.data(), expected, kHeaderSize));
 }
@@ -213,8 +214,8 @@ TEST(Codec, HeaderRejectsBadMagic) {
 
 TEST(Codec, HeaderRejectsOtherVersions) {
     auto h = goodHeader();
-    h[4] = 2;
-    EXPECT_EQ(headerError(h), "protocol version 2, this build speaks 1");
+    h[4] = 1;
+    EXPECT_EQ(headerError(h), "protocol version 1, this build speaks 2");
     h[4] = 0;
     EXPECT_NE(headerError(h).find("protocol version 0"), std::string::npos);
 }
@@ -319,7 +320,7 @@ TEST(Codec, TileAssignFieldsAreValidated) {
         p[at + 1] = v >> 8;
         return errorOf(MessageType::TileAssign, p);
     };
-    // Offsets: tileId 0, x0 4, y0 6, width 8, height 10, kx 12, ky 14.
+    // Offsets: tileId 0, x0 4, y0 6, width 8, height 10, kx 12, ky 14, accumulation 16.
     EXPECT_NE(withU16(8, 0).find("empty region"), std::string::npos);
     EXPECT_NE(withU16(10, 0).find("empty region"), std::string::npos);
     EXPECT_NE(withU16(12, 64).find("interleave cell"), std::string::npos);
@@ -586,8 +587,8 @@ TEST(Codec, FuzzedTileChannelsThrowOrDecode) {
     // own checks are what is exercised.
     const TileResult t = test::sampleTileResult(64);
     const auto payload = encodePayload(t);
-    // The tile prefix: 36 bytes of id and stats, then count, planes, sent, three references.
-    const std::size_t channelsAt = 36, blobAt = channelsAt + 12 + 12;
+    // The tile prefix: 36 bytes of id and stats, then count, planes, sent, four references.
+    const std::size_t channelsAt = 36, blobAt = channelsAt + 12 + 16;
     std::vector<std::uint8_t> prefix(payload.begin(), payload.begin() + blobAt);
     std::uint32_t blobSize = 0;
     std::memcpy(&blobSize, payload.data() + blobAt, 4);

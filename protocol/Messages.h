@@ -24,7 +24,7 @@ namespace igi::proto {
 /// epoch can be recognised and dropped. The payload size is checked against the type's maximum
 /// before anything is allocated.
 constexpr std::uint32_t kMagic = 0x50494749u;  // bytes 'I' 'G' 'I' 'P'
-constexpr std::uint16_t kVersion = 1;
+constexpr std::uint16_t kVersion = 2;
 constexpr std::size_t kHeaderSize = 24;
 
 enum class MessageType : std::uint16_t {
@@ -103,6 +103,11 @@ struct TileAssign {
     std::uint32_t tileId = 0;
     std::uint16_t x0 = 0, y0 = 0, width = 0, height = 0;
     std::uint16_t kx = 0, ky = 0;
+    /// The frame's place in its accumulation: 0 for the first frame after a change (or for
+    /// every frame without accumulation), i for the (i+1)-th frame averaged since. It drives
+    /// the progressive parts of the estimator (photon radius, clamp), so it must come from the
+    /// master: a client's own history would make the image depend on who rendered what.
+    std::uint32_t accumulation = 0;
 };
 
 /// Work counters of one tile, summed by the master into statistics.

@@ -8,7 +8,7 @@ namespace {
 
 // A new field in one of these structs must be added to the codec and to docs/PROTOCOL.md, or
 // it silently never reaches the clients. These sizes make the compiler say so (x86-64 / LP64).
-static_assert(sizeof(RenderSettings) == 88, "RenderSettings changed: update SceneCodec.cpp");
+static_assert(sizeof(RenderSettings) == 104, "RenderSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(ImageSettings) == 12, "ImageSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(Camera) == 40, "Camera changed: update SceneCodec.cpp");
 static_assert(sizeof(SceneBundle) == 2 * sizeof(std::string) + sizeof(SceneBundle::files),
@@ -71,6 +71,13 @@ void writeRenderSettings(ByteWriter& out, const RenderSettings& s) {
     out.i32(s.maxPathLength);
     out.i32(s.tileSize);
     out.u64(s.seed);
+    out.boolean(s.roulette);
+    out.i32(s.rouletteMaxLength);
+    out.u8(static_cast<std::uint8_t>(s.clampCompensation));
+    out.i32(s.indirectCausticPhotons);
+    out.boolean(s.progressiveRadius);
+    out.boolean(s.progressiveFilter);
+    out.f32(s.progressiveAlpha);
 }
 
 RenderSettings readRenderSettings(ByteReader& in) {
@@ -98,6 +105,16 @@ RenderSettings readRenderSettings(ByteReader& in) {
     s.maxPathLength = readInt(in, "maxPathLength", 1, 1024);
     s.tileSize = readInt(in, "tileSize", 1, 1024);
     s.seed = in.u64();
+    s.roulette = in.boolean();
+    s.rouletteMaxLength = readInt(in, "rouletteMaxLength", 2, 1024);
+    const std::uint8_t compensation = in.u8();
+    if (compensation > static_cast<std::uint8_t>(ClampCompensation::KolligKeller))
+        in.fail("unknown clamp compensation " + std::to_string(compensation));
+    s.clampCompensation = static_cast<ClampCompensation>(compensation);
+    s.indirectCausticPhotons = readInt(in, "indirectCausticPhotons", 0, 16 * kMi);
+    s.progressiveRadius = in.boolean();
+    s.progressiveFilter = in.boolean();
+    s.progressiveAlpha = readFloat(in, "progressiveAlpha", 1e-3f, 0.999f);
     return s;
 }
 

@@ -107,6 +107,13 @@ inline SceneData sampleSceneData() {
     m.settings.maxPathLength = 11;
     m.settings.tileSize = 48;
     m.settings.seed = 0xFEEDFACECAFEBEEFull;
+    m.settings.roulette = false;
+    m.settings.rouletteMaxLength = 33;
+    m.settings.clampCompensation = ClampCompensation::Shrink;
+    m.settings.indirectCausticPhotons = 4321;
+    m.settings.progressiveRadius = false;
+    m.settings.progressiveFilter = false;
+    m.settings.progressiveAlpha = 0.5f;
     m.image = {800, 600, -1.5f};
     m.camera.position = {1.0f, 2.0f, 3.0f};
     m.camera.lookAt = {-1.0f, 0.5f, 0.25f};
@@ -120,7 +127,7 @@ inline SceneReady sampleSceneReady() {
     return {290000, 1.25f};
 }
 inline TileAssign sampleTileAssign() {
-    return {77, 96, 192, 96, 64, 2, 1};
+    return {77, 96, 192, 96, 64, 2, 1, 300};
 }
 
 /// A tile with smooth reflectance, normals and depth and noisy irradiance, like a real one.
@@ -138,6 +145,7 @@ inline TileChannels sampleChannels(int n, std::uint32_t seed = 1) {
         c.normal[i] = glm::normalize(glm::vec3(0.2f * x - 0.1f, 1.0f, 0.1f * y));
         c.depth[i] = 3.0f + x + 0.5f * y;
         c.unfiltered[i] = (i % 17 == 0) ? glm::vec3(5.0f * u(rng)) : glm::vec3(0.0f);
+        c.glossy[i] = (i % 5 == 0) ? glm::vec3(0.3f * u(rng), 0.2f, 0.1f) : glm::vec3(0.0f);
     }
     return c;
 }

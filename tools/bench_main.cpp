@@ -152,7 +152,7 @@ int main(int argc, char** argv) {
             std::mutex mutex;
             std::condition_variable done;
             for (std::uint32_t t = 0; t < tiles.size(); ++t) {
-                renderer.render(pool, std::uint32_t(f), t, tiles[t],
+                renderer.render(pool, std::uint32_t(f), 0, t, tiles[t],
                                 [&](igi::proto::TileResult&& r) {
                                     std::lock_guard lock(mutex);
                                     rays += r.stats.rays;

@@ -1,4 +1,5 @@
-// igi-compare: how far an image is from a reference (relative MSE, RMSE, bias, SSIM), as JSON.
+// igi-compare: how far an image is from a reference (relative MSE, RMSE, bias, SSIM, speckle),
+// as JSON.
 #include <cstdio>
 #include <iostream>
 
@@ -57,7 +58,8 @@ int main(int argc, char** argv) {
                            {"rmse", d.rmse},
                            {"mean_relative_bias", d.meanRelativeBias},
                            {"block_relative_error", d.blockRelativeError},
-                           {"ssim", d.ssim}};
+                           {"ssim", d.ssim},
+                           {"speckle", d.speckle}};
         std::cout << out.dump(2) << '\n';
         return 0;
     } catch (const std::exception& e) {

@@ -56,6 +56,23 @@ double ssim(const Image& a, const Image& b, float exposure) {
     return count > 0 ? sum / count : 1.0;
 }
 
+// The fraction of the pixels the reference lights enough (luminance at least
+// kSpeckleMinReference of its mean) where the image is more than kSpeckleRatio times as bright.
+double speckle(const Image& image, const Image& reference) {
+    double sum = 0;
+    for (const glm::vec3& p : reference.pixels) sum += luminance(p);
+    if (reference.pixels.empty() || !(sum > 0)) return 0;  // nothing lit to compare with
+    const double threshold = kSpeckleMinReference * sum / double(reference.pixels.size());
+    std::size_t counted = 0, speckled = 0;
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        const double r = luminance(reference.pixels[i]);
+        if (r < threshold) continue;
+        ++counted;
+        if (double(luminance(image.pixels[i])) > kSpeckleRatio * r) ++speckled;
+    }
+    return counted > 0 ? double(speckled) / double(counted) : 0;
+}
+
 }  // namespace
 
 ImageDifference compareImages(const Image& image, const Image& reference, int blockSize,
@@ -98,6 +115,7 @@ ImageDifference compareImages(const Image& image, const Image& reference, int bl
     }
     d.blockRelativeError = blocks > 0 ? blockError / blocks : 0;
     d.ssim = ssim(image, reference, exposure);
+    d.speckle = speckle(image, reference);
     return d;
 }
 

@@ -15,7 +15,16 @@ struct ImageDifference {
     /// blockSize x blockSize pixels (noise averages out, bias stays).
     double blockRelativeError = 0;
     double ssim = 0;  ///< SSIM of the tone-mapped (sRGB, clipped) luminance, 1 = identical
+    /// Fraction of the counted pixels whose luminance is more than kSpeckleRatio times the
+    /// reference's at the same pixel. Counted are the pixels whose reference luminance is at
+    /// least kSpeckleMinReference of the reference's mean luminance (0 if there is none).
+    double speckle = 0;
 };
+
+/// Speckle: a pixel brighter than this multiple of the reference (strictly more).
+inline constexpr double kSpeckleRatio = 4.0;
+/// Speckle ignores pixels whose reference luminance is below this fraction of the mean.
+inline constexpr double kSpeckleMinReference = 0.01;
 
 /// Compares `image` with `reference` (same size, else std::invalid_argument). `exposure` in stops
 /// is applied before tone mapping for SSIM.

@@ -1,12 +1,20 @@
 #include "render/Accumulator.h"
 
+#include <algorithm>
+
+#include "math/Color.h"
+
 namespace igi {
 
-void Accumulator::reset(int width, int height) {
+void Accumulator::reset(int width, int height, bool withdrawBlur) {
     width_ = width;
     height_ = height;
     frames_ = 0;
-    sum_.assign(std::size_t(width) * height * 3, 0.0);
+    withdrawBlur_ = withdrawBlur;
+    const std::size_t pixels = std::size_t(width) * height;
+    sum_.assign(pixels * 3, 0.0);
+    sumUnfiltered_.assign(withdrawBlur ? pixels * 3 : 0, 0.0);
+    sumDifference2_.assign(withdrawBlur ? pixels : 0, 0.0);
 }
 
 void Accumulator::addRows(const std::vector<glm::vec3>& frame, int rowBegin, int rowEnd) {
@@ -17,11 +25,38 @@ void Accumulator::addRows(const std::vector<glm::vec3>& frame, int rowBegin, int
     }
 }
 
+void Accumulator::addRows(const std::vector<glm::vec3>& filtered,
+                          const std::vector<glm::vec3>& unfiltered, int rowBegin, int rowEnd) {
+    addRows(filtered, rowBegin, rowEnd);
+    if (!withdrawBlur_) return;
+    for (std::size_t p = std::size_t(rowBegin) * width_; p < std::size_t(rowEnd) * width_; ++p) {
+        sumUnfiltered_[3 * p] += unfiltered[p].x;
+        sumUnfiltered_[3 * p + 1] += unfiltered[p].y;
+        sumUnfiltered_[3 * p + 2] += unfiltered[p].z;
+        const double d = double(luminance(filtered[p])) - double(luminance(unfiltered[p]));
+        sumDifference2_[p] += d * d;
+    }
+}
+
 void Accumulator::meanRows(std::vector<glm::vec3>& out, int rowBegin, int rowEnd) const {
-    const double inv = frames_ > 0 ? 1.0 / frames_ : 0.0;
-    for (std::size_t p = std::size_t(rowBegin) * width_; p < std::size_t(rowEnd) * width_; ++p)
-        out[p] = glm::vec3(float(sum_[3 * p] * inv), float(sum_[3 * p + 1] * inv),
-                           float(sum_[3 * p + 2] * inv));
+    const double n = frames_;
+    const double inv = frames_ > 0 ? 1.0 / n : 0.0;
+    for (std::size_t p = std::size_t(rowBegin) * width_; p < std::size_t(rowEnd) * width_; ++p) {
+        const glm::dvec3 filtered(sum_[3 * p] * inv, sum_[3 * p + 1] * inv, sum_[3 * p + 2] * inv);
+        if (!withdrawBlur_ || frames_ < 2) {
+            out[p] = glm::vec3(filtered);
+            continue;
+        }
+        const glm::dvec3 unfiltered(sumUnfiltered_[3 * p] * inv, sumUnfiltered_[3 * p + 1] * inv,
+                                    sumUnfiltered_[3 * p + 2] * inv);
+        const double d = (0.2126 * filtered.x + 0.7152 * filtered.y + 0.0722 * filtered.z) -
+                         (0.2126 * unfiltered.x + 0.7152 * unfiltered.y + 0.0722 * unfiltered.z);
+        // The variance of the mean difference: the frames' sample variance over their count.
+        const double variance = std::max(0.0, sumDifference2_[p] * inv - d * d) / (n - 1.0);
+        const double allowed = kBlurTolerance * variance;
+        const double w = d * d <= allowed ? 1.0 : allowed / (d * d);
+        out[p] = glm::vec3(w * filtered + (1.0 - w) * unfiltered);
+    }
 }
 
 }  // namespace igi

@@ -9,21 +9,46 @@ namespace igi {
 /// Averages successive frames while nothing changes, so a still view converges (the
 /// accumulation buffer of the paper). Sums are kept in double so that thousands of frames
 /// lose no precision.
+///
+/// With `withdrawBlur`, each frame comes twice, through the discontinuity buffer and without
+/// it, and the mean shown is, pixel by pixel, a blend of the two means: the filtered one where
+/// the frames give no evidence that the filter's blur moves the pixel (every pixel of a smooth
+/// surface, and every pixel while few frames are in), the unfiltered one in proportion as they
+/// do. The buffer averages a pixel with its neighbours, which takes the interleaving's
+/// structured noise away but also blurs what changes across them (contact shadows, creases,
+/// the edges of caustics); that blur does not average out, so without this the accumulated
+/// image would converge to a blurred image instead of the true one. Per pixel, with D the
+/// difference of the two means' luminances and s^2 the variance of that difference (from the
+/// frames' own differences), the weight of the filtered mean is 1 if D^2 <= k s^2 and
+/// k s^2 / D^2 otherwise (k = kBlurTolerance): as frames come in s^2 falls like 1 / frames, so
+/// where the blur has a bias b the weight falls like 1 / (b^2 frames) and the mean converges
+/// to the unfiltered, unbiased one; where it has none, D stays within its noise and the
+/// filtered mean (with about a ninth of the variance) stays.
 class Accumulator {
   public:
-    void reset(int width, int height);
+    /// Two standard deviations: a bias is believed when the difference exceeds them.
+    static constexpr double kBlurTolerance = 4.0;
+
+    void reset(int width, int height, bool withdrawBlur = false);
     /// Adds rows [rowBegin, rowEnd) of a frame; call endFrame() once all rows are in.
     void addRows(const std::vector<glm::vec3>& frame, int rowBegin, int rowEnd);
+    /// The same with the frame's unfiltered image too (withdrawBlur).
+    void addRows(const std::vector<glm::vec3>& filtered, const std::vector<glm::vec3>& unfiltered,
+                 int rowBegin, int rowEnd);
     void endFrame() { ++frames_; }
     /// The mean of the frames added so far, for rows [rowBegin, rowEnd).
     void meanRows(std::vector<glm::vec3>& out, int rowBegin, int rowEnd) const;
     int frames() const { return frames_; }
+    bool withdrawsBlur() const { return withdrawBlur_; }
 
   private:
     int width_ = 0;
     int height_ = 0;
     int frames_ = 0;
-    std::vector<double> sum_;  ///< 3 per pixel
+    bool withdrawBlur_ = false;
+    std::vector<double> sum_;             ///< 3 per pixel: the (filtered) frames
+    std::vector<double> sumUnfiltered_;   ///< 3 per pixel, with withdrawBlur
+    std::vector<double> sumDifference2_;  ///< 1 per pixel: sum of (lum filtered - lum unfiltered)^2
 };
 
 }  // namespace igi

@@ -33,7 +33,7 @@ void discontinuityFilterRows(const FrameBuffer& f, const DiscontinuityFilterSett
             const int x0 = windowStart(x, s.sizeX, f.width), x1 = std::min(f.width, x0 + s.sizeX);
             const glm::vec3 n = f.normal[p];
             const float tolerance = s.depthThreshold * d;
-            glm::vec3 sum(0.0f);
+            glm::vec3 sum(0.0f), glossySum(0.0f);
             int count = 0;
             for (int qy = y0; qy < y1; ++qy) {
                 for (int qx = x0; qx < x1; ++qx) {
@@ -41,14 +41,22 @@ void discontinuityFilterRows(const FrameBuffer& f, const DiscontinuityFilterSett
                     if (std::fabs(f.depth[q] - d) > tolerance) continue;  // also rejects +inf
                     if (glm::dot(f.normal[q], n) < s.normalThreshold) continue;
                     sum += f.irradiance[q];
+                    glossySum += f.glossy[q];
                     ++count;
                 }
             }
             // The pixel itself passes unless it has no normal; then it stands alone.
             const glm::vec3 irradiance = count > 0 ? sum / float(count) : f.irradiance[p];
-            out[p] = f.reflectance[p] * irradiance + f.unfiltered[p];
+            const glm::vec3 glossy = count > 0 ? glossySum / float(count) : f.glossy[p];
+            out[p] = f.reflectance[p] * irradiance + glossy + f.unfiltered[p];
         }
     }
+}
+
+void compositeUnfilteredRows(const FrameBuffer& f, int rowBegin, int rowEnd,
+                             std::vector<glm::vec3>& out) {
+    for (std::size_t p = std::size_t(rowBegin) * f.width; p < std::size_t(rowEnd) * f.width; ++p)
+        out[p] = f.reflectance[p] * f.irradiance[p] + f.glossy[p] + f.unfiltered[p];
 }
 
 }  // namespace igi

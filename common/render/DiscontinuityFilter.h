@@ -10,8 +10,9 @@ namespace igi {
 
 /// The discontinuity buffer (paper, section 4.3): each pixel's irradiance is averaged with
 /// that of the neighbours in a sizeX x sizeY window that lie on the same smooth surface, then
-/// multiplied by the pixel's own reflectance (so texture detail stays sharp), and the radiance
-/// that must not be filtered is added. With the window the size of the interleaving pattern,
+/// multiplied by the pixel's own reflectance (so texture detail stays sharp); the glossy
+/// radiance is averaged over the same neighbours, and the radiance that must not be filtered
+/// is added. With the window the size of the interleaving pattern,
 /// every set P_k contributes to every pixel, which removes the structured noise of interleaving.
 struct DiscontinuityFilterSettings {
     int sizeX = 3;
@@ -28,5 +29,10 @@ struct DiscontinuityFilterSettings {
 /// interleaving cell.
 void discontinuityFilterRows(const FrameBuffer& frame, const DiscontinuityFilterSettings& settings,
                              int rowBegin, int rowEnd, std::vector<glm::vec3>& out);
+
+/// The same rows without the buffer: reflectance * irradiance + glossy + unfiltered, each pixel
+/// on its own (what the progressive filter of Accumulator compares the filtered frame with).
+void compositeUnfilteredRows(const FrameBuffer& frame, int rowBegin, int rowEnd,
+                             std::vector<glm::vec3>& out);
 
 }  // namespace igi

@@ -13,6 +13,7 @@ void FrameBuffer::reset(int w, int h) {
     normal.assign(n, glm::vec3(0.0f));
     depth.assign(n, std::numeric_limits<float>::infinity());
     unfiltered.assign(n, glm::vec3(0.0f));
+    glossy.assign(n, glm::vec3(0.0f));
 }
 
 void FrameBuffer::scatter(const Tile& tile, int n, int m, const TileChannels& c) {
@@ -24,6 +25,7 @@ void FrameBuffer::scatter(const Tile& tile, int n, int m, const TileChannels& c)
         normal[p] = c.normal.empty() ? glm::vec3(0.0f) : c.normal[i];
         depth[p] = c.depth.empty() ? std::numeric_limits<float>::infinity() : c.depth[i];
         unfiltered[p] = c.unfiltered.empty() ? glm::vec3(0.0f) : c.unfiltered[i];
+        glossy[p] = c.glossy.empty() ? glm::vec3(0.0f) : c.glossy[i];
     }
 }
 

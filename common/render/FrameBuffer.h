@@ -19,6 +19,7 @@ struct FrameBuffer {
     std::vector<glm::vec3> normal;
     std::vector<float> depth;
     std::vector<glm::vec3> unfiltered;
+    std::vector<glm::vec3> glossy;
 
     /// Sizes every plane for width x height and clears it (depth +inf: no surface).
     void reset(int w, int h);

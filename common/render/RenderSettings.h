@@ -10,6 +10,13 @@ enum class IntegratorKind : std::uint8_t {
     Path,  ///< brute-force path tracing, the reference
 };
 
+/// What restores the energy that bounding the VPL connections removes.
+enum class ClampCompensation : std::uint8_t {
+    Off,           ///< nothing: the bound's energy is lost (the paper's estimator)
+    Shrink,        ///< the bound loosens as frames accumulate (progressive clamp distance)
+    KolligKeller,  ///< a short path-traced continuation carries the bounded part (2004)
+};
+
 /// Every parameter of rendering, as plain data. Read from a scene file's "render" section and
 /// overridden by the master's command line; documented in docs/SCENE_FORMAT.md. Defaults are
 /// the paper's Cornell-box setting: 3 x 3 interleaving and filter, 4 direct and 18 indirect
@@ -25,9 +32,11 @@ struct RenderSettings {
     int directSamples = 4;
 
     // Indirect light from virtual point lights (VPLs).
-    int vplPaths = 0;            ///< light paths per set; 0 derives it from indirectVpls
-    int indirectVpls = 18;       ///< wanted indirect VPLs per set when vplPaths is 0
-    int maxLightPathLength = 4;  ///< vertices of a light path, the one on the light included
+    int vplPaths = 0;       ///< light paths per set; 0 derives it from indirectVpls
+    int indirectVpls = 18;  ///< wanted indirect VPLs per set when vplPaths is 0
+    /// Vertices of a light path, the one on the light included, in Keller's quasi-random walk
+    /// (stratified over the paths); with `roulette`, the paths alive at its end go on.
+    int maxLightPathLength = 4;
     /// Minimum distance in the VPL geometry term, as a fraction of the scene's bounding-box
     /// diagonal, so that the clamp means the same at every scale.
     float clampDistance = 0.02f;
@@ -48,6 +57,26 @@ struct RenderSettings {
         0.9f;  ///< neighbours whose normals' cosine is lower are kept apart
 
     bool accumulate = true;  ///< average successive frames while nothing changes
+
+    // Convergence while the view holds still ("converge" in a scene file turns all of these on
+    // or off at once). Each removes one bias of instant radiosity, so that accumulated frames
+    // converge to the rendering equation's answer instead of a darker one.
+    bool roulette = true;        ///< light paths go on by Russian roulette past the walk
+    int rouletteMaxLength = 64;  ///< safety cap on a light path's vertices under roulette
+    ClampCompensation clampCompensation = ClampCompensation::KolligKeller;
+    /// Photons shot per set from the VPLs at mirrors and glass (diffuse-specular-diffuse
+    /// light, which no VPL can carry); 0 leaves that light out.
+    int indirectCausticPhotons = 500;
+    /// Progressive photon mapping (Knaus and Zwicker 2011): the caustic radius of accumulated
+    /// frame i is r_i^2 = r_0^2 prod_{k=1..i} (k + alpha) / (k + 1) (render/ProgressiveSchedule.h).
+    bool progressiveRadius = true;
+    /// The discontinuity buffer's blur is withdrawn, pixel by pixel, where the accumulated
+    /// frames show it biased (Accumulator), so that the accumulated image converges to the
+    /// unblurred one.
+    bool progressiveFilter = true;
+    /// alpha of that schedule, in (0, 1); the shrinking clamp distance
+    /// (ClampCompensation::Shrink) follows the same schedule.
+    float progressiveAlpha = 2.0f / 3.0f;
 
     // Reference path tracer.
     int pathSamples = 16;    ///< samples per pixel per frame

@@ -23,6 +23,7 @@ void TileChannels::resize(int n, std::uint32_t planes) {
     set(normal, kNormal, glm::vec3(0.0f));
     set(depth, kDepth, INFINITY);
     set(unfiltered, kUnfiltered, glm::vec3(0.0f));
+    set(glossy, kGlossy, glm::vec3(0.0f));
 }
 
 std::uint32_t TileChannels::mask() const {
@@ -32,6 +33,7 @@ std::uint32_t TileChannels::mask() const {
     if (!normal.empty()) m |= kNormal;
     if (!depth.empty()) m |= kDepth;
     if (!unfiltered.empty()) m |= kUnfiltered;
+    if (!glossy.empty()) m |= kGlossy;
     return m;
 }
 

@@ -14,6 +14,7 @@ enum class SampleStream : std::uint32_t {
     DirectLight = 3,
     EyePath = 4,
     PathTracer = 5,
+    IndirectCausticPhotons = 6,  ///< photons shot from VPLs at mirrors and glass
 };
 
 /// The random bit vector for one dimension of one stream in one frame. Every client derives the

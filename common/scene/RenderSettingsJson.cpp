@@ -62,6 +62,33 @@ void readFilterAndOutput(const JsonNode& section, RenderSettings& s) {
     if (auto v = section.find("accumulate")) s.accumulate = v->boolean();
 }
 
+// The converging estimator: "converge" sets every mean at once (true: all on, as the defaults;
+// false: the paper's estimator), then the individual keys override it.
+void readConvergence(const JsonNode& section, RenderSettings& s) {
+    if (auto v = section.find("converge")) {
+        const RenderSettings defaults;
+        const bool on = v->boolean();
+        s.roulette = on;
+        s.clampCompensation = on ? defaults.clampCompensation : ClampCompensation::Off;
+        s.indirectCausticPhotons = on ? defaults.indirectCausticPhotons : 0;
+        s.progressiveRadius = on;
+        s.progressiveFilter = on;
+    }
+    if (auto v = section.find("roulette")) s.roulette = v->boolean();
+    readInt(section, "roulette_max_length", 2, 1024, s.rouletteMaxLength);
+    if (auto v = section.find("clamp_compensation")) {
+        const std::string c = v->choice({"off", "shrink", "kollig-keller"});
+        s.clampCompensation = c == "off"      ? ClampCompensation::Off
+                              : c == "shrink" ? ClampCompensation::Shrink
+                                              : ClampCompensation::KolligKeller;
+    }
+    readInt(section, "indirect_caustic_photons", 0, 10000000, s.indirectCausticPhotons);
+    if (auto v = section.find("progressive_radius")) s.progressiveRadius = v->boolean();
+    if (auto v = section.find("progressive_filter")) s.progressiveFilter = v->boolean();
+    // How fast the caustic radius (and a shrinking clamp) shrinks; Knaus and Zwicker use 2/3.
+    readFloat(section, "progressive_alpha", NumberRange::open(0, 1), s.progressiveAlpha);
+}
+
 void readPathTracerAndScheduling(const JsonNode& section, RenderSettings& s) {
     readInt(section, "path_samples", 1, 65536, s.pathSamples);
     readInt(section, "max_path_length", 1, 1024, s.maxPathLength);
@@ -74,17 +101,39 @@ void readPathTracerAndScheduling(const JsonNode& section, RenderSettings& s) {
 void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& settings,
                              const std::string& file, const std::string& jsonPathPrefix) {
     const JsonNode section(json, file, jsonPathPrefix);
-    section.checkKeys({"integrator", "interleave", "direct_samples", "vpl_paths", "indirect_vpls",
-                       "max_light_path_length", "clamp_distance", "caustic_photons",
-                       "caustic_radius", "max_eye_depth", "filter", "filter_depth_threshold",
-                       "filter_normal_threshold", "accumulate", "path_samples", "max_path_length",
-                       "tile_size", "seed"});
+    section.checkKeys({"integrator",
+                       "interleave",
+                       "direct_samples",
+                       "vpl_paths",
+                       "indirect_vpls",
+                       "max_light_path_length",
+                       "clamp_distance",
+                       "caustic_photons",
+                       "caustic_radius",
+                       "max_eye_depth",
+                       "filter",
+                       "filter_depth_threshold",
+                       "filter_normal_threshold",
+                       "accumulate",
+                       "path_samples",
+                       "max_path_length",
+                       "tile_size",
+                       "seed",
+                       "converge",
+                       "roulette",
+                       "roulette_max_length",
+                       "clamp_compensation",
+                       "indirect_caustic_photons",
+                       "progressive_radius",
+                       "progressive_filter",
+                       "progressive_alpha"});
     // Read into a copy so that a failure leaves `settings` untouched.
     RenderSettings s = settings;
     readIntegrator(section, s);
     readIgiLighting(section, s);
     readCausticsAndEyePaths(section, s);
     readFilterAndOutput(section, s);
+    readConvergence(section, s);
     readPathTracerAndScheduling(section, s);
     settings = s;
 }

@@ -1,0 +1,269 @@
+#include "EndPointShader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "ConnectionBound.h"
+#include "DeltaChain.h"
+#include "math/Color.h"
+#include "math/Warp.h"
+
+namespace igi {
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+// Shadow rays stop this fraction short of a VPL, which sits on a surface of its own.
+constexpr float kShadowShrink = 1e-4f;
+
+// The part of a connection arriving from a direction of sharpness s that the bound removed,
+// for a point reached by a compensation ray (residual >= 0); 1 otherwise.
+float residualWeight(float residual, float sharpness) {
+    if (residual < 0) return 1.0f;
+    return sharpness > residual ? 1.0f - residual / sharpness : 0.0f;
+}
+
+// Shadow rays from one origin in packets of up to 8; each unblocked ray adds its two
+// contributions, in the order they were queued (the sum does not depend on the packets).
+class ShadowBatch {
+  public:
+    ShadowBatch(const TraceableScene& scene, glm::vec3 origin, RayCounters& counters)
+        : scene_(scene), origin_(origin), counters_(counters) {}
+
+    void add(glm::vec3 direction, float distance, glm::vec3 irradiance, glm::vec3 glossy,
+             glm::vec3& irradianceSum, glm::vec3& glossySum) {
+        directions_[pending_] = direction;
+        tfar_[pending_] = distance * (1.0f - kShadowShrink);
+        irradiance_[pending_] = irradiance;
+        glossy_[pending_] = glossy;
+        if (++pending_ == kPacket) flush(irradianceSum, glossySum);
+    }
+
+    void flush(glm::vec3& irradianceSum, glm::vec3& glossySum) {
+        if (pending_ == 0) return;
+        if (pending_ == 1)
+            blocked_[0] = scene_.occluded(origin_, directions_[0], tfar_[0], counters_);
+        else
+            scene_.occluded8(origin_, directions_, tfar_, pending_, blocked_, counters_);
+        for (int i = 0; i < pending_; ++i) {
+            if (blocked_[i]) continue;
+            irradianceSum += irradiance_[i];
+            glossySum += glossy_[i];
+        }
+        pending_ = 0;
+    }
+
+  private:
+    static constexpr int kPacket = TraceableScene::kPacket;
+    const TraceableScene& scene_;
+    glm::vec3 origin_;
+    RayCounters& counters_;
+    glm::vec3 directions_[kPacket], irradiance_[kPacket], glossy_[kPacket];
+    float tfar_[kPacket];
+    bool blocked_[kPacket];
+    int pending_ = 0;
+};
+
+float maxSharpnessOf(const std::vector<Material>& materials) {
+    float s = 1.0f;
+    for (const Material& m : materials)
+        if (m.reflection == Reflection::Glossy && !m.glass && !isBlack(m.specular))
+            s = std::max(s, 0.5f * (m.phongExponent + 2.0f));
+    return s;
+}
+
+}  // namespace
+
+EndPointShader::EndPointShader(const TraceableScene& scene, const Lights& lights,
+                               const RenderSettings& settings)
+    : scene_(scene),
+      lights_(lights),
+      directSamples_(std::max(0, settings.directSamples)),
+      maxEyeDepth_(settings.maxEyeDepth),
+      compensate_(settings.clampCompensation == ClampCompensation::KolligKeller),
+      maxSharpness_(maxSharpnessOf(scene.materials())) {}
+
+EndPointLight EndPointShader::shadeAt(const ShadingPoint& x, const LightingSet& set,
+                                      PathRandom* random, int depth, float residual,
+                                      RayCounters& counters) const {
+    Sums sums;
+    const bool glossy = x.brdf.hasGlossy();
+    const bool continuation =
+        random != nullptr && depth < kMaxDepth &&
+        (glossy || (compensate_ && set.minDistance2 > 0 && set.indirectLight));
+    gatherVpls(x, set, continuation && glossy, residual, sums, counters);
+    // Light that came through mirrors and glass: the photons carry it to the Lambertian lobe;
+    // to the glossy lobe only when no continuation looks at the mirrors and glass itself.
+    gatherPhotons(x, set, glossy && !continuation, residual, sums);
+    if (continuation) continueFrom(x, set, *random, depth, residual, sums, counters);
+    return {sums.irradiance * kInvPi, sums.glossy};
+}
+
+void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
+                                bool misWithContinuation, float residual, Sums& sums,
+                                RayCounters& counters) const {
+    const SurfaceBrdf& b = x.brdf;
+    const bool glossy = b.hasGlossy();
+    const glm::vec3 n = b.normal;
+    const glm::vec3 origin = scene_.offsetOrigin(x.position, x.faceNormal);
+    ShadowBatch batch(scene_, origin, counters);
+    const float lightSamples = float(directSamples_);
+
+    // Direct light: not bounded (its singularity is the light's own size, and for a glossy
+    // lobe the MIS weight takes the light samples out where BRDF sampling is better).
+    for (const Vpl& v : set.direct) {
+        const glm::vec3 toLight = v.position - origin;
+        const float d2 = glm::dot(toLight, toLight);
+        if (!(d2 > 0)) continue;
+        const float d = std::sqrt(d2);
+        const glm::vec3 w = toLight / d;
+        const float cosX = glm::dot(n, w);
+        if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) continue;
+        const float cosY = v.omni ? 1.0f : -glm::dot(v.normal, w);
+        if (cosY <= 0) continue;
+        const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
+        const float r = residual < 0 ? 1.0f : residualWeight(residual, b.sharpness(cosAlpha));
+        if (!(r > 0)) continue;
+        const glm::vec3 e = v.power * (cosX * cosY / d2 * r);
+        glm::vec3 g(0.0f);
+        if (glossy) {
+            float mis = 1.0f;
+            if (misWithContinuation && !v.omni)
+                mis = powerHeuristic(lightSamples * v.areaPdf * d2 / cosY, b.pdf(w, x.mirror));
+            g = e * b.glossy(cosAlpha) * mis;
+        }
+        batch.add(w, d, e, g, sums.irradiance, sums.glossy);
+    }
+
+    // Indirect light: every connection bounded, through the BRDFs at both ends.
+    for (const Vpl& v : set.indirect) {
+        const glm::vec3 toLight = v.position - origin;
+        const float d2 = glm::dot(toLight, toLight);
+        if (!(d2 > 0)) continue;
+        const float d = std::sqrt(d2);
+        const glm::vec3 w = toLight / d;
+        const float cosX = glm::dot(n, w);
+        if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) continue;
+        const float cosY = -glm::dot(v.normal, w);
+        if (cosY <= 0) continue;
+        glm::vec3 intensity = v.power;
+        float sharpnessY = v.diffuseShare;
+        if (v.glossy()) {
+            const float c = -glm::dot(w, v.mirror);
+            const float lobe = c > 0 ? std::pow(std::min(c, 1.0f), v.exponent) : 0.0f;
+            intensity += v.glossyPower * lobe;
+            sharpnessY += v.glossyShare * 0.5f * (v.exponent + 2.0f) * lobe;
+        }
+        const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
+        const float sharpnessX = glossy ? b.sharpness(cosAlpha) : b.diffuseShare;
+        const float kept = keptFraction(d2, set.minDistance2, sharpnessX, sharpnessY);
+        const float r = residualWeight(residual, sharpnessX);
+        if (!(r > 0)) continue;
+        const glm::vec3 e = intensity * (cosX * cosY / d2 * kept * r);
+        const glm::vec3 g = glossy ? e * b.glossy(cosAlpha) : glm::vec3(0.0f);
+        batch.add(w, d, e, g, sums.irradiance, sums.glossy);
+    }
+    batch.flush(sums.irradiance, sums.glossy);
+}
+
+void EndPointShader::gatherPhotons(const ShadingPoint& x, const LightingSet& set, bool withGlossy,
+                                   float residual, Sums& sums) const {
+    if (set.caustics.photons().empty()) return;
+    const float r = set.caustics.radius();
+    const float density = 1.0f / (kPi * r * r);
+    const SurfaceBrdf& b = x.brdf;
+    set.caustics.forEachNear(x.position, [&](const CausticPhoton& p) {
+        if (glm::dot(p.direction, b.normal) >= 0) return;  // arrived on the other side
+        const glm::vec3 wi = -p.direction;
+        const float cosAlpha = glm::dot(wi, x.mirror);
+        const float weight =
+            density * (residual < 0 ? 1.0f : residualWeight(residual, b.sharpness(cosAlpha)));
+        sums.irradiance += p.power * weight;
+        if (withGlossy) sums.glossy += p.power * b.glossy(cosAlpha) * weight;
+    });
+}
+
+void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set, PathRandom& random,
+                                  int depth, float residual, Sums& sums,
+                                  RayCounters& counters) const {
+    const SurfaceBrdf& b = x.brdf;
+    const bool glossy = b.hasGlossy();
+    const glm::vec2 u = random.next2();
+    const float uLobe = random.next();
+    const float uChain = random.next();
+    const glm::vec3 w = b.sample(u, uLobe, x.mirror);
+    const float cosX = glm::dot(w, b.normal);
+    if (cosX <= 0 || glm::dot(w, x.faceNormal) <= 0) return;
+    const float pdf = b.pdf(w, x.mirror);
+    if (!(pdf > 0)) return;
+    const float cosAlpha = glm::dot(w, x.mirror);
+    const float sharpnessX = b.sharpness(cosAlpha);
+    const float r = residualWeight(residual, sharpnessX);
+    if (!(r > 0)) return;
+    const float scale = cosX / pdf * r;  // radiance from w times this is an estimate of E
+    const glm::vec3 glossyF = glossy ? b.glossy(cosAlpha) : glm::vec3(0.0f);
+    const bool compensate = compensate_ && set.minDistance2 > 0 && set.indirectLight;
+
+    // Without a glossy lobe only the compensation needs the ray, and it has nothing to add
+    // beyond dmin sqrt(s_x s_max), where every connection is kept whole.
+    float tfar = kInfinity;
+    if (!glossy) {
+        if (!compensate) return;
+        tfar = std::sqrt(set.minDistance2 * sharpnessX * maxSharpness_);
+    }
+    const glm::vec3 origin = scene_.offsetOrigin(x.position, x.faceNormal, w);
+    SurfacePoint hit;
+    if (!scene_.intersect(origin, w, tfar, hit, counters)) return;
+    const glm::vec3 wy = -w;
+    const float d2 = hit.distance * hit.distance;
+
+    // A light seen by the glossy lobe: the BRDF-sampling half of the MIS pair.
+    if (glossy) {
+        const glm::vec3 le = emittedToward(hit, wy);
+        if (!isBlack(le)) {
+            const float cosLight = glm::dot(wy, hit.geometricNormal);
+            const float lightPdf =
+                lights_.areaPdf(hit.mesh, hit.triangle) * d2 / std::max(cosLight, 1e-8f);
+            const float mis = powerHeuristic(pdf, float(directSamples_) * lightPdf);
+            sums.glossy += le * glossyF * (scale * mis);
+        }
+    }
+    const Lobes lobes = lobesAt(hit, wy);
+
+    // Kollig-Keller: the part of the connections between x and this point that the bound
+    // removed, estimated with the point's own light, each incoming direction weighted by what
+    // the bound removed of it.
+    if (compensate && lobes.hasNonDelta()) {
+        const float c = d2 / (set.minDistance2 * sharpnessX);
+        if (c < lobes.brdf.maxSharpness()) {
+            const EndPointLight l =
+                shadeAt(ShadingPoint::at(hit, lobes), set, &random, depth + 1, c, counters);
+            const glm::vec3 radiance = l.radiance(lobes.brdf) * scale;
+            sums.irradiance += radiance;
+            sums.glossy += radiance * glossyF;
+        }
+    }
+
+    // The glossy lobe's view of mirrors and glass, followed to the next non-delta point (the
+    // Lambertian lobe gets that light from the photons).
+    if (!glossy || !lobes.hasDelta()) return;
+    Lobe lobe;
+    float probability = 0;
+    if (!chooseDeltaLobe(lobes, uChain, lobe, probability)) return;
+    glm::vec3 direction, weight;
+    if (!sampleLobe(lobes, lobe, {0.5f, 0.5f}, direction, weight)) return;
+    glm::vec3 emitted(0.0f);
+    const glm::vec3 throughput = glossyF * (scale / probability) * weight;
+    const auto end = followDeltaChain(
+        scene_, scene_.offsetOrigin(hit.position, lobes.faceNormal, direction), direction,
+        throughput, 0.0f, maxEyeDepth_, [&] { return random.next(); }, emitted, counters);
+    sums.glossy += emitted;
+    if (!end) return;
+    const EndPointLight l = shadeAt(ShadingPoint::at(end->hit, end->lobes), set, &random, depth + 1,
+                                    kNoResidual, counters);
+    sums.glossy += end->throughput * l.radiance(end->lobes.brdf);
+}
+
+}  // namespace igi
