@@ -6,17 +6,46 @@ namespace igi {
 
 /// The bound on a VPL connection: instant radiosity's clamp and its glossy counterpart as one
 /// rule. Of the connection between a point x and a VPL y at distance d, the fraction
-///   kept = min(1, d^2 / (dmin^2 s_x s_y))
+///   kept = min(1, d^2 / (dmin^2 s_x s_y), S / s_x)
 /// is added, where s_x and s_y are the sharpness of the two ends' BRDFs for this pair of
-/// directions (SurfaceBrdf::sharpness: pi times the BRDF normalized to unit albedo). Between
-/// Lambertian ends s = 1 and this is the clamp G <= cos cos / dmin^2 exactly; in a Phong peak
-/// s = (n + 2) / 2 and the bound starts farther out, so a glossy VPL cannot spike either.
+/// directions (SurfaceBrdf::sharpness: pi times the BRDF normalized to unit albedo, 1 for a
+/// Lambertian surface, up to (n + 2) / 2 in a Phong peak) and S the sharpness budget (>= 1).
+/// - Between Lambertian ends the first term is the clamp G <= cos cos / dmin^2 exactly (its
+///   1 / d^2 spikes near creases); with a glossy end it starts farther out.
+/// - The second bounds a glossy receiver at any distance: through a sharp lobe a few VPLs per
+///   set would show as so many highlights. Only the receiver's lobe is bounded so: a glossy VPL
+///   lighting a wall paints a soft blotch, while taking that light from the VPL would leave it
+///   to the wall's continuation rays finding the lights in the glossy surface's lobe, one
+///   firefly at a time.
 /// Written in sharpness rather than in the BRDF itself, it depends on neither colour nor
-/// texture. dmin is a fraction of the scene's diagonal, so it means the same at every scale.
-/// The rest, 1 - kept, is what the Kollig-Keller compensation (EndPointShader) adds back.
-inline float keptFraction(float distance2, float minDistance2, float sharpnessX, float sharpnessY) {
-    const float limit = minDistance2 * sharpnessX * sharpnessY;
-    return distance2 >= limit ? 1.0f : distance2 / limit;
+/// texture; dmin is a fraction of the scene's diagonal, so it means the same at every scale.
+/// The rest, 1 - kept, is what the Kollig-Keller compensation (EndPointShader) adds back by a
+/// continuation ray sampled from the BRDF: for a sharp lobe that is most of the light, which is
+/// what BRDF sampling is good at.
+struct ConnectionBound {
+    /// min(d^2 / (dmin^2 s_x), S / s_x): what the bound leaves of a connection ending on a
+    /// surface of sharpness 1; kept = min(1, distanceTerm / s_y, budgetTerm).
+    float distanceTerm = 0;
+    float budgetTerm = 0;
+
+    static ConnectionBound of(float distance2, float minDistance2, float sharpnessBudget,
+                              float sharpnessX) {
+        return {distance2 / (minDistance2 * sharpnessX), sharpnessBudget / sharpnessX};
+    }
+    float kept(float sharpnessY) const {
+        const float byDistance = distanceTerm >= sharpnessY ? 1.0f : distanceTerm / sharpnessY;
+        return std::min(std::min(1.0f, budgetTerm), byDistance);
+    }
+    /// Whether some far end of sharpness at most `maxSharpnessY` is not kept whole.
+    bool cuts(float maxSharpnessY) const {
+        return budgetTerm < 1.0f || distanceTerm < maxSharpnessY;
+    }
+};
+
+inline float keptFraction(float distance2, float minDistance2, float sharpnessBudget,
+                          float sharpnessX, float sharpnessY) {
+    return ConnectionBound::of(distance2, minDistance2, sharpnessBudget, sharpnessX)
+        .kept(sharpnessY);
 }
 
 /// Power heuristic (beta = 2) weight of a strategy of density `a` against one of density `b`

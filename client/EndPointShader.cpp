@@ -19,10 +19,9 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr float kShadowShrink = 1e-4f;
 
 // The part of a connection arriving from a direction of sharpness s that the bound removed,
-// for a point reached by a compensation ray (residual >= 0); 1 otherwise.
-float residualWeight(float residual, float sharpness) {
-    if (residual < 0) return 1.0f;
-    return sharpness > residual ? 1.0f - residual / sharpness : 0.0f;
+// for a point reached by a compensation ray (`residual`); 1 otherwise.
+float residualWeight(const ConnectionBound* residual, float sharpness) {
+    return residual ? 1.0f - residual->kept(sharpness) : 1.0f;
 }
 
 // Shadow rays from one origin in packets of up to 8; each unblocked ray adds its two
@@ -86,7 +85,8 @@ EndPointShader::EndPointShader(const TraceableScene& scene, const Lights& lights
       maxSharpness_(maxSharpnessOf(scene.materials())) {}
 
 EndPointLight EndPointShader::shadeAt(const ShadingPoint& x, const LightingSet& set,
-                                      PathRandom* random, int depth, float residual,
+                                      PathRandom* random, int depth,
+                                      const ConnectionBound* residual,
                                       RayCounters& counters) const {
     Sums sums;
     const bool glossy = x.brdf.hasGlossy();
@@ -102,8 +102,8 @@ EndPointLight EndPointShader::shadeAt(const ShadingPoint& x, const LightingSet& 
 }
 
 void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
-                                bool misWithContinuation, float residual, Sums& sums,
-                                RayCounters& counters) const {
+                                bool misWithContinuation, const ConnectionBound* residual,
+                                Sums& sums, RayCounters& counters) const {
     const SurfaceBrdf& b = x.brdf;
     const bool glossy = b.hasGlossy();
     const glm::vec3 n = b.normal;
@@ -124,7 +124,7 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
         const float cosY = v.omni ? 1.0f : -glm::dot(v.normal, w);
         if (cosY <= 0) continue;
         const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
-        const float r = residual < 0 ? 1.0f : residualWeight(residual, b.sharpness(cosAlpha));
+        const float r = residual ? residualWeight(residual, b.sharpness(cosAlpha)) : 1.0f;
         if (!(r > 0)) continue;
         const glm::vec3 e = v.power * (cosX * cosY / d2 * r);
         glm::vec3 g(0.0f);
@@ -158,7 +158,8 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
         }
         const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
         const float sharpnessX = glossy ? b.sharpness(cosAlpha) : b.diffuseShare;
-        const float kept = keptFraction(d2, set.minDistance2, sharpnessX, sharpnessY);
+        const float kept =
+            keptFraction(d2, set.minDistance2, set.sharpnessBudget, sharpnessX, sharpnessY);
         const float r = residualWeight(residual, sharpnessX);
         if (!(r > 0)) continue;
         const glm::vec3 e = intensity * (cosX * cosY / d2 * kept * r);
@@ -169,7 +170,7 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
 }
 
 void EndPointShader::gatherPhotons(const ShadingPoint& x, const LightingSet& set, bool withGlossy,
-                                   float residual, Sums& sums) const {
+                                   const ConnectionBound* residual, Sums& sums) const {
     if (set.caustics.photons().empty()) return;
     const float r = set.caustics.radius();
     const float density = 1.0f / (kPi * r * r);
@@ -179,14 +180,14 @@ void EndPointShader::gatherPhotons(const ShadingPoint& x, const LightingSet& set
         const glm::vec3 wi = -p.direction;
         const float cosAlpha = glm::dot(wi, x.mirror);
         const float weight =
-            density * (residual < 0 ? 1.0f : residualWeight(residual, b.sharpness(cosAlpha)));
+            density * (residual ? residualWeight(residual, b.sharpness(cosAlpha)) : 1.0f);
         sums.irradiance += p.power * weight;
         if (withGlossy) sums.glossy += p.power * b.glossy(cosAlpha) * weight;
     });
 }
 
 void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set, PathRandom& random,
-                                  int depth, float residual, Sums& sums,
+                                  int depth, const ConnectionBound* residual, Sums& sums,
                                   RayCounters& counters) const {
     const SurfaceBrdf& b = x.brdf;
     const bool glossy = b.hasGlossy();
@@ -236,10 +237,11 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
     // removed, estimated with the point's own light, each incoming direction weighted by what
     // the bound removed of it.
     if (compensate && lobes.hasNonDelta()) {
-        const float c = d2 / (set.minDistance2 * sharpnessX);
-        if (c < lobes.brdf.maxSharpness()) {
+        const ConnectionBound bound =
+            ConnectionBound::of(d2, set.minDistance2, set.sharpnessBudget, sharpnessX);
+        if (bound.cuts(lobes.brdf.maxSharpness())) {
             const EndPointLight l =
-                shadeAt(ShadingPoint::at(hit, lobes), set, &random, depth + 1, c, counters);
+                shadeAt(ShadingPoint::at(hit, lobes), set, &random, depth + 1, &bound, counters);
             const glm::vec3 radiance = l.radiance(lobes.brdf) * scale;
             sums.irradiance += radiance;
             sums.glossy += radiance * glossyF;
@@ -261,8 +263,8 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
         throughput, 0.0f, maxEyeDepth_, [&] { return random.next(); }, emitted, counters);
     sums.glossy += emitted;
     if (!end) return;
-    const EndPointLight l = shadeAt(ShadingPoint::at(end->hit, end->lobes), set, &random, depth + 1,
-                                    kNoResidual, counters);
+    const EndPointLight l =
+        shadeAt(ShadingPoint::at(end->hit, end->lobes), set, &random, depth + 1, nullptr, counters);
     sums.glossy += end->throughput * l.radiance(end->lobes.brdf);
 }
 

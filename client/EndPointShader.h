@@ -2,6 +2,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "ConnectionBound.h"
 #include "LightingSet.h"
 #include "Lights.h"
 #include "PathRandom.h"
@@ -54,13 +55,13 @@ class EndPointShader {
 
     EndPointLight shade(const ShadingPoint& x, const LightingSet& set, PathRandom& random,
                         RayCounters& counters) const {
-        return shadeAt(x, set, &random, 0, kNoResidual, counters);
+        return shadeAt(x, set, &random, 0, nullptr, counters);
     }
     /// The same without any continuation ray: a deterministic function of the point and the
     /// set (for tests).
     EndPointLight shadeWithoutContinuation(const ShadingPoint& x, const LightingSet& set,
                                            RayCounters& counters) const {
-        return shadeAt(x, set, nullptr, 0, kNoResidual, counters);
+        return shadeAt(x, set, nullptr, 0, nullptr, counters);
     }
 
     /// Continuations nest at most this deep (compensation of a compensation, a glossy lobe's
@@ -68,24 +69,22 @@ class EndPointShader {
     static constexpr int kMaxDepth = 3;
 
   private:
-    static constexpr float kNoResidual = -1.0f;
-
     struct Sums {
         glm::vec3 irradiance{0.0f};  ///< E (divided by pi at the end)
         glm::vec3 glossy{0.0f};
     };
 
-    /// With residual >= 0 only the part that the bound removed from the connection by which
+    /// With a `residual` only the part that this bound removed from the connection by which
     /// this point was reached is added: each incoming direction w weighs
-    /// 1 - min(1, residual / s(w)), s this point's sharpness (ConnectionBound).
+    /// 1 - residual->kept(s(w)), s this point's sharpness (ConnectionBound).
     EndPointLight shadeAt(const ShadingPoint& x, const LightingSet& set, PathRandom* random,
-                          int depth, float residual, RayCounters& counters) const;
+                          int depth, const ConnectionBound* residual, RayCounters& counters) const;
     void gatherVpls(const ShadingPoint& x, const LightingSet& set, bool misWithContinuation,
-                    float residual, Sums& sums, RayCounters& counters) const;
+                    const ConnectionBound* residual, Sums& sums, RayCounters& counters) const;
     void gatherPhotons(const ShadingPoint& x, const LightingSet& set, bool withGlossy,
-                       float residual, Sums& sums) const;
+                       const ConnectionBound* residual, Sums& sums) const;
     void continueFrom(const ShadingPoint& x, const LightingSet& set, PathRandom& random, int depth,
-                      float residual, Sums& sums, RayCounters& counters) const;
+                      const ConnectionBound* residual, Sums& sums, RayCounters& counters) const;
 
     const TraceableScene& scene_;
     const Lights& lights_;

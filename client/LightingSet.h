@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "SurfacePoint.h"
@@ -18,8 +19,10 @@ struct LightingSet {
     std::vector<Vpl> direct;    ///< samples on the lights (connections not bounded)
     std::vector<Vpl> indirect;  ///< VPLs from light paths (connections bounded)
     CausticGrid caustics;       ///< photons that reached a non-delta surface through mirrors/glass
-    /// The connection bound's distance, squared (ConnectionBound), for this frame.
+    /// The connection bound's distance, squared, and its sharpness budget (ConnectionBound), for
+    /// this frame.
     float minDistance2 = 0;
+    float sharpnessBudget = std::numeric_limits<float>::infinity();
     /// Whether the settings ask for indirect light at all (VPL paths longer than the light):
     /// the bound's compensation only completes the VPLs' estimate.
     bool indirectLight = false;

@@ -83,8 +83,14 @@ LightingSet LightingSetBuilder::build(std::uint32_t frame, std::uint32_t accumul
     // Progressive parts shrink with the frame's place in the accumulation.
     const double shrink = progressiveScale(settings_.progressiveAlpha, accumulation);
     set.minDistance2 = minDistance_ * minDistance_;
-    if (settings_.clampCompensation == ClampCompensation::Shrink)
+    // The sharpness budget needs something to restore what it removes: without compensation a
+    // glossy lobe is left whole (it is not singular, only noisy).
+    if (settings_.clampCompensation == ClampCompensation::KolligKeller)
+        set.sharpnessBudget = settings_.glossyBound;
+    if (settings_.clampCompensation == ClampCompensation::Shrink) {
         set.minDistance2 = float(double(set.minDistance2) * shrink);
+        set.sharpnessBudget = float(double(settings_.glossyBound) / shrink);
+    }
     const double radiusShrink = settings_.progressiveRadius ? shrink : 1.0;
     if (lights_.empty()) return set;
     sampleDirect(frame, setIndex, set);

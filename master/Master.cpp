@@ -579,11 +579,15 @@ int Master::run() {
 namespace igi {
 
 void Master::writeFrameImages(std::uint32_t frame) {
-    if (options_.outputSequence.empty() && snapshots_.empty()) return;
+    const auto& only = options_.sequenceFrames;
+    const bool inSequence =
+        !options_.outputSequence.empty() &&
+        (only.empty() || std::find(only.begin(), only.end(), frame) != only.end());
+    if (!inSequence && snapshots_.empty()) return;
     // The compositor's image changes with the next frame: write a copy, off the io thread.
     auto image = std::make_shared<Image>(compositor_->shown());
     const float exposure = scene_.image.exposure;
-    if (!options_.outputSequence.empty()) {
+    if (inSequence) {
         pool_.submit([image, exposure, path = sequencePath(options_.outputSequence, frame)] {
             try {
                 writeImage(path, *image, exposure);

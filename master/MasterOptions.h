@@ -14,7 +14,10 @@ struct MasterOptions {
     int frames = 1;                   ///< 0: until stopped (control "stop", SIGINT or SIGTERM)
     std::filesystem::path animation;  ///< keyframes applied frame by frame (docs/ANIMATION.md)
     std::string outputSequence;       ///< e.g. out/frame_%04d.png: every frame's image
-    bool control = false;             ///< accept control commands (docs/ANIMATION.md)
+    /// Only these frames (0-based) of the sequence, when not empty (benchmarks that need the
+    /// accumulated image after 1, 2, 4, ... frames of a long run).
+    std::vector<std::uint32_t> sequenceFrames;
+    bool control = false;  ///< accept control commands (docs/ANIMATION.md)
     std::string controlHost = "127.0.0.1";
     std::uint16_t controlPort = 0;  ///< 0: any free port (logged)
     int localClients = 0;

@@ -48,6 +48,9 @@ int main(int argc, char** argv) {
                    "keyframed changes applied frame by frame (docs/ANIMATION.md)");
     app.add_option("--output-sequence", o.outputSequence,
                    "write every frame, e.g. out/frame_%04d.png (.png or .exr)");
+    app.add_option("--sequence-frames", o.sequenceFrames,
+                   "write only these frames (0-based, comma-separated) of --output-sequence")
+        ->delimiter(',');
     std::string control;
     auto* controlOpt =
         app.add_option("--control", control,
@@ -127,6 +130,8 @@ int main(int argc, char** argv) {
         {"--max-path-length", "max_path_length", true, "path tracer's maximum path length"},
         {"--roulette-max-length", "roulette_max_length", true,
          "safety cap on light path vertices under roulette"},
+        {"--glossy-bound", "glossy_bound", false,
+         "sharpness budget of VPL connections (1 and more; glossy lobes beyond it are sampled)"},
         {"--indirect-caustic-photons", "indirect_caustic_photons", true,
          "photons shot from the VPLs at mirrors and glass per set"},
         {"--progressive-alpha", "progressive_alpha", false,

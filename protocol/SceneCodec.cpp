@@ -8,7 +8,7 @@ namespace {
 
 // A new field in one of these structs must be added to the codec and to docs/PROTOCOL.md, or
 // it silently never reaches the clients. These sizes make the compiler say so (x86-64 / LP64).
-static_assert(sizeof(RenderSettings) == 104, "RenderSettings changed: update SceneCodec.cpp");
+static_assert(sizeof(RenderSettings) == 112, "RenderSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(ImageSettings) == 12, "ImageSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(Camera) == 40, "Camera changed: update SceneCodec.cpp");
 static_assert(sizeof(SceneBundle) == 2 * sizeof(std::string) + sizeof(SceneBundle::files),
@@ -75,6 +75,7 @@ void writeRenderSettings(ByteWriter& out, const RenderSettings& s) {
     out.i32(s.rouletteMaxLength);
     out.u8(static_cast<std::uint8_t>(s.clampCompensation));
     out.i32(s.indirectCausticPhotons);
+    out.f32(s.glossyBound);
     out.boolean(s.progressiveRadius);
     out.boolean(s.progressiveFilter);
     out.f32(s.progressiveAlpha);
@@ -112,6 +113,7 @@ RenderSettings readRenderSettings(ByteReader& in) {
         in.fail("unknown clamp compensation " + std::to_string(compensation));
     s.clampCompensation = static_cast<ClampCompensation>(compensation);
     s.indirectCausticPhotons = readInt(in, "indirectCausticPhotons", 0, 16 * kMi);
+    s.glossyBound = readFloat(in, "glossyBound", 1.0f, 1e6f);
     s.progressiveRadius = in.boolean();
     s.progressiveFilter = in.boolean();
     s.progressiveAlpha = readFloat(in, "progressiveAlpha", 1e-3f, 0.999f);

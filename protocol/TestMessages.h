@@ -111,6 +111,7 @@ inline SceneData sampleSceneData() {
     m.settings.rouletteMaxLength = 33;
     m.settings.clampCompensation = ClampCompensation::Shrink;
     m.settings.indirectCausticPhotons = 4321;
+    m.settings.glossyBound = 2.5f;
     m.settings.progressiveRadius = false;
     m.settings.progressiveFilter = false;
     m.settings.progressiveAlpha = 0.5f;

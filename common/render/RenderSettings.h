@@ -64,6 +64,10 @@ struct RenderSettings {
     bool roulette = true;        ///< light paths go on by Russian roulette past the walk
     int rouletteMaxLength = 64;  ///< safety cap on a light path's vertices under roulette
     ClampCompensation clampCompensation = ClampCompensation::KolligKeller;
+    /// The sharpness budget S of the VPL bound (client/ConnectionBound.h): a connection whose
+    /// two ends' sharpness multiply to more is cut down to S / (s_x s_y), and the
+    /// compensation adds the rest by BRDF sampling. Only with a compensation.
+    float glossyBound = 4.0f;
     /// Photons shot per set from the VPLs at mirrors and glass (diffuse-specular-diffuse
     /// light, which no VPL can carry); 0 leaves that light out.
     int indirectCausticPhotons = 500;

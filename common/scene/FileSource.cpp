@@ -182,4 +182,9 @@ std::vector<std::string> BundleFileSource::list(const std::string& folder) {
     return names;
 }
 
+std::string DiskFileSource::displayName(const std::string& path) const {
+    if (std::filesystem::path(path).is_absolute()) return path;
+    return (root_ / path).lexically_normal().string();
+}
+
 }  // namespace igi

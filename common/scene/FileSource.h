@@ -27,6 +27,9 @@ class FileSource {
     /// check it too; the loaders call it first where they can name the line or JSON path of
     /// the reference.
     virtual void checkPath(const std::string& path) { (void)path; }
+    /// `path` as a user would find the file, for warnings (errors are renamed where they are
+    /// caught, warnings are written at once).
+    virtual std::string displayName(const std::string& path) const { return path; }
 };
 
 /// Reads files under a root folder and remembers every file it read, so that the master can
@@ -41,6 +44,8 @@ class DiskFileSource : public FileSource {
     bool exists(const std::string& path) override;
     std::vector<std::string> list(const std::string& folder) override;
     void checkPath(const std::string& path) override;
+    /// Relative to the working directory, as the user named the scene file.
+    std::string displayName(const std::string& path) const override;
     const std::map<std::string, std::string>& filesRead() const { return filesRead_; }
 
   private:

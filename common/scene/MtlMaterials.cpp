@@ -80,10 +80,40 @@ std::string FileSourceMtlReader::problem(const std::string& library) const {
     return it == problems_.end() ? std::string() : it->second;
 }
 
+void FileSourceMtlReader::addPlaceholders(const std::string& library,
+                                          const std::vector<std::string>& names) {
+    if (names.size() > maxMaterials_ ||
+        sceneMaterials_ + materialFiles_.size() > maxMaterials_ - names.size())
+        throw SceneError::inFile(objPath_, std::to_string(names.size()) +
+                                               " materials that no library defines would exceed "
+                                               "the limit of " +
+                                               std::to_string(maxMaterials_) + " per scene");
+    std::string text;
+    const Material d = defaultMaterial();
+    for (const std::string& name : names)
+        text += "newmtl " + name + "\nKd " + std::to_string(d.diffuse.x) + " " +
+                std::to_string(d.diffuse.y) + " " + std::to_string(d.diffuse.z) + "\n";
+    placeholders_[library] = text;
+}
+
+void FileSourceMtlReader::restart() {
+    missing_.clear();
+    problems_.clear();
+    libraries_.clear();
+    materialFiles_.clear();
+}
+
 bool FileSourceMtlReader::operator()(const std::string& matId,
                                      std::vector<tinyobj::material_t>* materials,
                                      std::map<std::string, int>* matMap, std::string* warn,
                                      std::string* err) {
+    if (auto it = placeholders_.find(matId); it != placeholders_.end()) {
+        texts_[matId] = it->second;
+        std::istringstream stream(it->second);
+        tinyobj::LoadMtl(matMap, materials, &stream, warn, err);
+        materialFiles_.resize(materials->size(), matId);
+        return true;
+    }
     try {
         const std::string resolved = resolveRelative(objPath_, slashes(matId));
         files_.checkPath(resolved);

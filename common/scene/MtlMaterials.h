@@ -42,6 +42,13 @@ class FileSourceMtlReader : public tinyobj::MaterialReader {
     const std::vector<std::string>& materialFiles() const { return materialFiles_; }
     const std::string& text(const std::string& mtlPath) const { return texts_.at(mtlPath); }
 
+    /// Serves `library` as a library of placeholder materials, the default grey one under each
+    /// of `names`: what the faces of an OBJ's `usemtl` of a name no library defines get.
+    /// Throws SceneError when they would bring the scene past maxMaterials.
+    void addPlaceholders(const std::string& library, const std::vector<std::string>& names);
+    /// Forgets what was read (not the placeholders), for a second parse of the same OBJ.
+    void restart();
+
   private:
     FileSource& files_;
     std::string objPath_;
@@ -52,6 +59,7 @@ class FileSourceMtlReader : public tinyobj::MaterialReader {
     std::vector<std::string> libraries_;
     std::vector<std::string> materialFiles_;
     std::map<std::string, std::string> texts_;
+    std::map<std::string, std::string> placeholders_;  ///< library name -> MTL text
 };
 
 /// Maps one MTL material to a Material, loading its map_Kd texture through `assets`.

@@ -40,9 +40,39 @@ struct ParsedObj {
     throw SceneError::inFile(objPath, fallback);
 }
 
-void checkMaterialStatements(const std::string& objPath, const std::string& text,
-                             const FileSourceMtlReader& reader,
-                             const std::vector<tinyobj::material_t>& materials) {
+// tinyobjloader on `parsed`, which is `text` as the file has it (for error lines) or with a
+// placeholder library in front.
+ParsedObj runTinyObj(const std::string& objPath, const std::string& parsed, const std::string& text,
+                     FileSourceMtlReader& reader) {
+    ParsedObj obj;
+    std::string warn, err;
+    MemoryStreamBuf buffer(parsed);
+    std::istream in(&buffer);
+    const bool ok =
+        tinyobj::LoadObj(&obj.attrib, &obj.shapes, &obj.materials, &warn, &err, &in, &reader,
+                         /*triangulate=*/true, /*default_vcols_fallback=*/false);
+    if (!ok) failAtBadIndex(objPath, text, err);
+    // tinyobjloader only warns about these, and drops quads that have them.
+    if (warn.find("out of bounds") != std::string::npos ||
+        warn.find("invalid vertex index") != std::string::npos) {
+        failAtBadIndex(objPath, text, warn);
+    }
+    if (!warn.empty()) spdlog::debug("{}: tinyobjloader: {}", objPath, warn);
+    return obj;
+}
+
+// A `usemtl` of a name that no material library defines.
+struct MissingMaterial {
+    std::string name;
+    int line = 0;
+};
+
+// Throws for a material library that cannot be read; returns the `usemtl` names that no
+// library defines (each once, at its first line).
+std::vector<MissingMaterial> checkMaterialStatements(
+    const std::string& objPath, const std::string& text, const FileSourceMtlReader& reader,
+    const std::vector<tinyobj::material_t>& materials) {
+    std::vector<MissingMaterial> missingMaterials;
     for (const ObjMaterialStatement& st : scanMaterialStatements(text)) {
         for (const std::string& name : st.names) {
             if (st.isLibrary) {
@@ -57,18 +87,16 @@ void checkMaterialStatements(const std::string& objPath, const std::string& text
             }
             bool found = false;
             for (const auto& m : materials) found = found || m.name == name;
-            if (found) continue;
-            std::string libraries;
-            for (const auto& l : reader.libraries())
-                libraries += (libraries.empty() ? "" : ", ") + l;
-            throw SceneError::atLine(
-                objPath, st.line,
-                "usemtl '" + name + "': no material of that name in " +
-                    (libraries.empty() ? std::string("any material library (no mtllib loaded)")
-                                       : libraries));
+            for (const auto& m : missingMaterials) found = found || m.name == name;
+            if (!found) missingMaterials.push_back({name, st.line});
         }
     }
+    return missingMaterials;
 }
+
+// The name of the placeholder library: not a file name an OBJ can mean (tinyobjloader splits
+// `mtllib` at white space, so it has none).
+constexpr const char* kPlaceholderLibrary = "<igi:placeholder-materials>";
 
 void checkFinite(const std::string& objPath, const std::string& text,
                  const std::vector<tinyobj::real_t>& values, int perElement, const char* keyword) {
@@ -121,26 +149,37 @@ void checkObjSize(const std::string& objPath, const std::string& text, SceneAsse
     assets.triangles().add(counts.triangles);
 }
 
-ParsedObj parseObj(const std::string& objPath, const std::string& text,
-                   FileSourceMtlReader& reader) {
+ParsedObj parseObj(const std::string& objPath, const std::string& text, FileSourceMtlReader& reader,
+                   const FileSource& files) {
     if (auto line = findNonNumericVertexLine(text)) {
         throw SceneError::atLine(objPath, *line, "coordinate is not a finite number");
     }
-    ParsedObj obj;
-    std::string warn, err;
-    MemoryStreamBuf buffer(text);
-    std::istream in(&buffer);
-    const bool ok =
-        tinyobj::LoadObj(&obj.attrib, &obj.shapes, &obj.materials, &warn, &err, &in, &reader,
-                         /*triangulate=*/true, /*default_vcols_fallback=*/false);
-    if (!ok) failAtBadIndex(objPath, text, err);
-    // tinyobjloader only warns about these, and drops quads that have them.
-    if (warn.find("out of bounds") != std::string::npos ||
-        warn.find("invalid vertex index") != std::string::npos) {
-        failAtBadIndex(objPath, text, warn);
+    ParsedObj obj = runTinyObj(objPath, text, text, reader);
+    const std::vector<MissingMaterial> missing =
+        checkMaterialStatements(objPath, text, reader, obj.materials);
+    if (!missing.empty()) {
+        // As Blender and tinyobjloader do, a missing material is the default one, under its
+        // own name so that a scene file's "materials" section can still set it. tinyobjloader
+        // keeps no name for a face whose material is unknown, so the file is read once more
+        // with a library of placeholders in front of its own.
+        std::string libraries;
+        for (const auto& l : reader.libraries())
+            libraries += (libraries.empty() ? "" : ", ") + files.displayName(l);
+        if (libraries.empty()) libraries = "any material library (no mtllib loaded)";
+        std::vector<std::string> names;
+        for (const MissingMaterial& m : missing) {
+            spdlog::warn(
+                "{}:{}: usemtl '{}': no material of that name in {}; using the default "
+                "material (grey, Kd 0.8) under that name, which a scene file's "
+                "\"materials\" section can set",
+                files.displayName(objPath), m.line, m.name, libraries);
+            names.push_back(m.name);
+        }
+        reader.addPlaceholders(kPlaceholderLibrary, names);
+        reader.restart();
+        obj = runTinyObj(objPath, std::string("mtllib ") + kPlaceholderLibrary + "\n" + text, text,
+                         reader);
     }
-    if (!warn.empty()) spdlog::debug("{}: tinyobjloader: {}", objPath, warn);
-    checkMaterialStatements(objPath, text, reader, obj.materials);
     checkFinite(objPath, text, obj.attrib.vertices, 3, "v");
     checkFinite(objPath, text, obj.attrib.normals, 3, "vn");
     checkFinite(objPath, text, obj.attrib.texcoords, 2, "vt");
@@ -303,7 +342,7 @@ void loadObj(const std::string& objPath, SceneAssets& assets, Mesh& mesh) {
     checkObjSize(objPath, text, assets);
     FileSourceMtlReader reader(assets.files(), objPath, assets.limits().maxMaterials,
                                assets.scene().materials.size());
-    const ParsedObj obj = parseObj(objPath, text, reader);
+    const ParsedObj obj = parseObj(objPath, text, reader, assets.files());
     const std::uint32_t base = appendMaterials(obj, reader, assets);
     buildMesh(objPath, obj, base, assets, mesh);
     spdlog::debug("{}: {} triangles, {} vertices, {} materials", objPath, mesh.triangles.size(),

@@ -4,6 +4,7 @@
 
 #include "util/ExpectContains.h"
 
+#include "scene/MtlMaterials.h"
 #include "scene/SceneLoader.h"
 #include "scene/TestScenes.h"
 
@@ -105,12 +106,29 @@ TEST(ObjLoader, NegativeIndicesAndDegenerateTrianglesAreKept) {
     EXPECT_EQ(s.meshes[0].positions[s.meshes[0].triangles[0].z], glm::vec3(2, 0, 0));
 }
 
-TEST(ObjLoader, UsemtlOfAMissingMaterialNamesTheLine) {
-    const std::string what = sceneErrorOf([] {
-        loadObjText("v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\nusemtl b\nf 1 3 2\n",
-                    "newmtl a\n");
-    });
-    EXPECT_CONTAINS(what, "m.obj:7: usemtl 'b': no material of that name in m.mtl");
+// As Blender and tinyobjloader do, a missing material is the default one (with a warning that
+// names the line), under its own name so that a scene file can still set it.
+TEST(ObjLoader, UsemtlOfAMissingMaterialIsTheDefaultOneUnderItsName) {
+    test::CapturedLog log;
+    const Scene s = loadObjText(
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\nusemtl b\nf 1 3 2\n"
+        "usemtl b\nf 2 1 3\n",
+        "newmtl a\nKd 0.1 0.2 0.3\n");
+    EXPECT_CONTAINS(log.text(), "m.obj:7: usemtl 'b': no material of that name in m.mtl");
+    ASSERT_EQ(s.meshes[0].materialIds.size(), 3u);
+    const Material& a = s.materials[s.meshes[0].materialIds[0]];
+    const Material& b = s.materials[s.meshes[0].materialIds[1]];
+    EXPECT_EQ(a.name, "a");
+    EXPECT_EQ(a.diffuse, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_EQ(b.name, "b");
+    EXPECT_EQ(b.diffuse, defaultMaterial().diffuse);
+    EXPECT_EQ(s.meshes[0].materialIds[2], s.meshes[0].materialIds[1]);  // one material b
+    // A scene file's "materials" section sets it like any other.
+    const Scene set = test::parseInline(
+        R"({"meshes": [{"file": "m.obj"}], "materials": {"b": {"diffuse": [0.5, 0.5, 0.5]}}})",
+        {{"m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl b\nf 1 2 3\n"},
+         {"m.mtl", "newmtl a\n"}});
+    EXPECT_EQ(set.materials[set.meshes[0].materialIds[0]].diffuse, glm::vec3(0.5f));
 }
 
 TEST(ObjLoader, MissingMtllibNamesTheLine) {

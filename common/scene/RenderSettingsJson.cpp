@@ -83,6 +83,8 @@ void readConvergence(const JsonNode& section, RenderSettings& s) {
                                               : ClampCompensation::KolligKeller;
     }
     readInt(section, "indirect_caustic_photons", 0, 10000000, s.indirectCausticPhotons);
+    // The VPL bound's sharpness budget: 1 and more (1 leaves no glossy lobe to the VPLs).
+    readFloat(section, "glossy_bound", NumberRange::closed(1, 1e6), s.glossyBound);
     if (auto v = section.find("progressive_radius")) s.progressiveRadius = v->boolean();
     if (auto v = section.find("progressive_filter")) s.progressiveFilter = v->boolean();
     // How fast the caustic radius (and a shrinking clamp) shrinks; Knaus and Zwicker use 2/3.
@@ -124,6 +126,7 @@ void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& setting
                        "roulette_max_length",
                        "clamp_compensation",
                        "indirect_caustic_photons",
+                       "glossy_bound",
                        "progressive_radius",
                        "progressive_filter",
                        "progressive_alpha"});

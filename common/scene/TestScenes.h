@@ -9,6 +9,9 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
+#include <sstream>
 
 #include "scene/FileSource.h"
 #include "scene/SceneError.h"
@@ -56,5 +59,22 @@ std::string sceneErrorOf(F&& f) {
     ADD_FAILURE() << "expected a SceneError";
     return "";
 }
+
+/// What the default logger writes while it lives (the loaders warn through it).
+class CapturedLog {
+  public:
+    CapturedLog() : previous_(spdlog::default_logger()) {
+        auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(text_);
+        spdlog::set_default_logger(std::make_shared<spdlog::logger>("captured", sink));
+    }
+    ~CapturedLog() { spdlog::set_default_logger(previous_); }
+    CapturedLog(const CapturedLog&) = delete;
+    CapturedLog& operator=(const CapturedLog&) = delete;
+    std::string text() const { return text_.str(); }
+
+  private:
+    std::shared_ptr<spdlog::logger> previous_;
+    std::ostringstream text_;
+};
 
 }  // namespace igi::test
