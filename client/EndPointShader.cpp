@@ -90,9 +90,9 @@ EndPointLight EndPointShader::shadeAt(const ShadingPoint& x, const LightingSet& 
                                       RayCounters& counters) const {
     Sums sums;
     const bool glossy = x.brdf.hasGlossy();
-    const bool continuation =
-        random != nullptr && depth < kMaxDepth &&
-        (glossy || (compensate_ && set.minDistance2 > 0 && set.indirectLight));
+    const bool continuation = random != nullptr && depth < kMaxDepth &&
+                              (glossy || (compensate_ && set.compensationShare > 0 &&
+                                          set.minDistance2 > 0 && set.indirectLight));
     gatherVpls(x, set, continuation && glossy, residual, sums, counters);
     // Light that came through mirrors and glass: the photons carry it to the Lambertian lobe;
     // to the glossy lobe only when no continuation looks at the mirrors and glass itself.
@@ -138,6 +138,7 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
     }
 
     // Indirect light: every connection bounded, through the BRDFs at both ends.
+    const bool lambertian = !glossy && residual == nullptr;
     for (const Vpl& v : set.indirect) {
         const glm::vec3 toLight = v.position - origin;
         const float d2 = glm::dot(toLight, toLight);
@@ -148,6 +149,13 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
         if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) continue;
         const float cosY = -glm::dot(v.normal, w);
         if (cosY <= 0) continue;
+        if (lambertian && !v.glossy()) {
+            // Lambertian at both ends (sharpness 1, within any budget): the paper's clamp,
+            // G <= cos cos / dmin^2. The common case, kept apart for speed.
+            const float g = cosX * cosY / std::max(d2, set.minDistance2);
+            batch.add(w, d, v.power * g, glm::vec3(0.0f), sums.irradiance, sums.glossy);
+            continue;
+        }
         glm::vec3 intensity = v.power;
         float sharpnessY = v.diffuseShare;
         if (v.glossy()) {
@@ -171,19 +179,21 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
 
 void EndPointShader::gatherPhotons(const ShadingPoint& x, const LightingSet& set, bool withGlossy,
                                    const ConnectionBound* residual, Sums& sums) const {
-    if (set.caustics.photons().empty()) return;
-    const float r = set.caustics.radius();
-    const float density = 1.0f / (kPi * r * r);
     const SurfaceBrdf& b = x.brdf;
-    set.caustics.forEachNear(x.position, [&](const CausticPhoton& p) {
-        if (glm::dot(p.direction, b.normal) >= 0) return;  // arrived on the other side
-        const glm::vec3 wi = -p.direction;
-        const float cosAlpha = glm::dot(wi, x.mirror);
-        const float weight =
-            density * (residual ? residualWeight(residual, b.sharpness(cosAlpha)) : 1.0f);
-        sums.irradiance += p.power * weight;
-        if (withGlossy) sums.glossy += p.power * b.glossy(cosAlpha) * weight;
-    });
+    for (const CausticGrid* grid : {&set.caustics, &set.indirectCaustics}) {
+        if (grid->photons().empty()) continue;
+        const float r = grid->radius();
+        const float density = 1.0f / (kPi * r * r);
+        grid->forEachNear(x.position, [&](const CausticPhoton& p) {
+            if (glm::dot(p.direction, b.normal) >= 0) return;  // arrived on the other side
+            const glm::vec3 wi = -p.direction;
+            const float cosAlpha = glm::dot(wi, x.mirror);
+            const float weight =
+                density * (residual ? residualWeight(residual, b.sharpness(cosAlpha)) : 1.0f);
+            sums.irradiance += p.power * weight;
+            if (withGlossy) sums.glossy += p.power * b.glossy(cosAlpha) * weight;
+        });
+    }
 }
 
 void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set, PathRandom& random,
@@ -191,9 +201,16 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
                                   RayCounters& counters) const {
     const SurfaceBrdf& b = x.brdf;
     const bool glossy = b.hasGlossy();
+    // Without a glossy lobe the ray is for the compensation alone, a small correction near
+    // creases: only a share of the points trace it, weighted up (Russian roulette).
+    float traced = 1.0f;
+    if (!glossy) {
+        if (random.next() >= set.compensationShare) return;
+        traced = set.compensationShare;
+    }
     const glm::vec2 u = random.next2();
-    const float uLobe = random.next();
-    const float uChain = random.next();
+    const float uLobe = glossy ? random.next() : 0.0f;
+    const float uChain = glossy ? random.next() : 0.0f;
     const glm::vec3 w = b.sample(u, uLobe, x.mirror);
     const float cosX = glm::dot(w, b.normal);
     if (cosX <= 0 || glm::dot(w, x.faceNormal) <= 0) return;
@@ -203,7 +220,7 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
     const float sharpnessX = b.sharpness(cosAlpha);
     const float r = residualWeight(residual, sharpnessX);
     if (!(r > 0)) return;
-    const float scale = cosX / pdf * r;  // radiance from w times this is an estimate of E
+    const float scale = cosX / (pdf * traced) * r;  // radiance from w times this estimates E
     const glm::vec3 glossyF = glossy ? b.glossy(cosAlpha) : glm::vec3(0.0f);
     const bool compensate = compensate_ && set.minDistance2 > 0 && set.indirectLight;
 

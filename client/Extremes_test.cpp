@@ -247,16 +247,18 @@ TEST(Albedo, NearOneStaysFiniteAndBelowTheClosedSphereBound) {
     for (const auto& p : image.pixels) ASSERT_LT(p.x, bound) << "energy exploded";
 }
 
-// The same with Russian roulette: a path survives each bounce with probability 0.999, so nearly
-// every path reaches the safety cap, and the image is the series truncated there, finite and
-// below the bound.
+// The same with Russian roulette, in accumulated frames (the first frame after a change is the
+// paper's walk): the walk's paths go on, each surviving a bounce with probability 0.999, so
+// nearly every path reaches the safety cap, and the image is the series truncated there,
+// finite and below the bound.
 TEST(Albedo, NearOneWithRouletteIsTheSeriesUpToTheCap) {
     const float rho = 0.999f;
     Scene scene = closedSphere(rho);
     scene.render.roulette = true;
+    scene.render.maxLightPathLength = 4;
     scene.render.rouletteMaxLength = 24;
     InProcessRenderer renderer(scene);
-    const Image image = renderer.render(4);
+    const Image image = renderer.render(4, 0, /*firstAccumulation=*/1);
     EXPECT_EQ(renderer.nonFiniteValues(), 0u);
     ASSERT_TRUE(allFinite(image));
     double bounces = 0;  // vertices 0 (direct) .. cap - 1

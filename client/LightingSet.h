@@ -18,7 +18,11 @@ namespace igi {
 struct LightingSet {
     std::vector<Vpl> direct;    ///< samples on the lights (connections not bounded)
     std::vector<Vpl> indirect;  ///< VPLs from light paths (connections bounded)
-    CausticGrid caustics;       ///< photons that reached a non-delta surface through mirrors/glass
+    CausticGrid caustics;  ///< photons from the lights that reached a non-delta surface through
+                           ///< mirrors and glass (caustics)
+    /// Photons from the VPLs that did (diffuse-specular-diffuse light): smooth light, a few
+    /// photons per set, gathered in a wider radius of their own.
+    CausticGrid indirectCaustics;
     /// The connection bound's distance, squared, and its sharpness budget (ConnectionBound), for
     /// this frame.
     float minDistance2 = 0;
@@ -26,6 +30,11 @@ struct LightingSet {
     /// Whether the settings ask for indirect light at all (VPL paths longer than the light):
     /// the bound's compensation only completes the VPLs' estimate.
     bool indirectLight = false;
+    /// Whether the light paths went on past the walk by Russian roulette.
+    bool roulette = false;
+    /// The share of points without a glossy lobe that trace a compensation ray (0: none; the
+    /// points with one always do when there is a compensation at all).
+    float compensationShare = 0;
     std::uint32_t lightPaths = 0;  ///< light paths traced for `indirect`
     std::uint32_t photonsShot = 0;
     RayCounters buildRays;  ///< rays traced to build the set

@@ -69,8 +69,8 @@ LightingSetBuilder::LightingSetBuilder(const TraceableScene& scene, const Lights
     minDistance_ = settings.clampDistance * scene.diagonal();
 }
 
-int LightingSetBuilder::maxLightPathLength() const {
-    return settings_.roulette ? settings_.rouletteMaxLength : settings_.maxLightPathLength;
+int LightingSetBuilder::maxLightPathLength(bool roulette) const {
+    return roulette ? settings_.rouletteMaxLength : settings_.maxLightPathLength;
 }
 
 std::uint32_t LightingSetBuilder::survivors(std::uint32_t d) const {
@@ -80,13 +80,20 @@ std::uint32_t LightingSetBuilder::survivors(std::uint32_t d) const {
 LightingSet LightingSetBuilder::build(std::uint32_t frame, std::uint32_t accumulation,
                                       std::uint32_t setIndex) const {
     LightingSet set;
+    // The first frame after a change is what a user sees while moving: it stays the paper's
+    // estimator, as fast and as clean (the roulette's long paths are few and heavy, the
+    // compensation costs rays). The frames accumulated after it add what it leaves out, so
+    // the running mean converges all the same: its first frame's bias weighs 1 / frames.
+    const bool accumulating = accumulation > 0;
+    const bool compensate = settings_.clampCompensation == ClampCompensation::KolligKeller;
+    set.roulette = settings_.roulette && accumulating;
+    set.compensationShare = compensate && accumulating ? kCompensationShare : 0.0f;
     // Progressive parts shrink with the frame's place in the accumulation.
     const double shrink = progressiveScale(settings_.progressiveAlpha, accumulation);
     set.minDistance2 = minDistance_ * minDistance_;
     // The sharpness budget needs something to restore what it removes: without compensation a
     // glossy lobe is left whole (it is not singular, only noisy).
-    if (settings_.clampCompensation == ClampCompensation::KolligKeller)
-        set.sharpnessBudget = settings_.glossyBound;
+    if (compensate) set.sharpnessBudget = settings_.glossyBound;
     if (settings_.clampCompensation == ClampCompensation::Shrink) {
         set.minDistance2 = float(double(set.minDistance2) * shrink);
         set.sharpnessBudget = float(double(settings_.glossyBound) / shrink);
@@ -97,12 +104,16 @@ LightingSet LightingSetBuilder::build(std::uint32_t frame, std::uint32_t accumul
     walkLightPaths(frame, setIndex, set);
     std::uint32_t shot = 0;
     auto photons = caustics_.shoot(frame, setIndex, shot, set.buildRays);
+    std::vector<CausticPhoton> indirectPhotons;
     caustics_.shootFromVpls(frame, setIndex, set.indirect,
-                            std::uint32_t(std::max(0, settings_.indirectCausticPhotons)), photons,
-                            shot, set.buildRays);
+                            std::uint32_t(std::max(0, settings_.indirectCausticPhotons)),
+                            indirectPhotons, shot, set.buildRays);
     set.photonsShot = shot;
-    set.caustics = CausticGrid(std::move(photons),
-                               float(double(caustics_.radius()) * std::sqrt(radiusShrink)));
+    const double radiusScale = std::sqrt(radiusShrink);
+    set.caustics = CausticGrid(std::move(photons), float(double(caustics_.radius()) * radiusScale));
+    set.indirectCaustics = CausticGrid(
+        std::move(indirectPhotons),
+        float(double(settings_.indirectCausticRadius) * scene_.diagonal() * radiusScale));
     return set;
 }
 
@@ -131,8 +142,8 @@ void LightingSetBuilder::sampleDirect(std::uint32_t frame, std::uint32_t setInde
 
 void LightingSetBuilder::walkLightPaths(std::uint32_t frame, std::uint32_t setIndex,
                                         LightingSet& set) const {
-    const int maxLength = maxLightPathLength();
-    const bool roulette = settings_.roulette;
+    const bool roulette = set.roulette;
+    const int maxLength = maxLightPathLength(roulette);
     if (vplPaths_ == 0 || maxLength < 2) return;
     set.indirectLight = true;
     const LightPathSampler sampler(settings_.seed, frame, SampleStream::VplPaths, setIndex,

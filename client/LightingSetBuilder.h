@@ -33,8 +33,13 @@ class LightingSetBuilder {
     /// (d = 0 .. maxLightPathLength - 2); with roulette, those of the last go on by roulette.
     std::uint32_t survivors(std::uint32_t diffuseBounces) const;
     bool causticsActive() const { return caustics_.active(); }
-    /// The most vertices a light path can have (the light's included).
-    int maxLightPathLength() const;
+    /// The most vertices a light path can have (the light's included), with or without roulette.
+    int maxLightPathLength(bool roulette) const;
+
+    /// The share of the points without a glossy lobe that trace the compensation ray in the
+    /// frames after the first (the others add nothing, the tracers 1 / share times as much):
+    /// it restores about 1 % of the light (more in creases) and would cost a ray a pixel.
+    static constexpr float kCompensationShare = 1.0f;
 
   private:
     void sampleDirect(std::uint32_t frame, std::uint32_t setIndex, LightingSet& set) const;

@@ -77,8 +77,9 @@ TEST(LightingSetBuilder, RouletteContinuesThePapersWalk) {
     InProcessRenderer roulette(scene);
     std::size_t extra = 0, longest = 0;
     for (std::uint32_t f = 0; f < 100; ++f) {
-        const LightingSet a = paper.renderer().builder().build(f, f % 9),
-                          b = roulette.renderer().builder().build(f, f % 9);
+        // The walk goes on only in accumulated frames (accumulation > 0).
+        const LightingSet a = paper.renderer().builder().build(f, 1, f % 9),
+                          b = roulette.renderer().builder().build(f, 1, f % 9);
         // The walk's VPLs come path by path: those of b that a also has are a's, in order.
         std::size_t matched = 0;
         for (const Vpl& v : b.indirect)

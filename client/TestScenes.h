@@ -164,7 +164,9 @@ class InProcessRenderer {
           renderer_(traceable_, SceneState::of(scene_), scene_.render, scene_.image),
           pool_(threads) {}
 
-    Image render(int frames, std::uint32_t firstFrame = 0) {
+    /// `firstAccumulation`: the first frame's place in the accumulation, as the master would
+    /// send it (the first frame after a change is 0, and renders the paper's estimator).
+    Image render(int frames, std::uint32_t firstFrame = 0, std::uint32_t firstAccumulation = 0) {
         const RenderSettings& s = scene_.render;
         const int w = scene_.image.width, h = scene_.image.height;
         const auto tiles = makeTiles(w, h, s.interleaveX, s.interleaveY, s.tileSize);
@@ -176,8 +178,9 @@ class InProcessRenderer {
             frame.reset(w, h);
             for (const Tile& t : tiles) {
                 // The frame's place in the accumulation, as the master would send it.
-                const proto::TileResult r = renderer_.renderNow(
-                    pool_, firstFrame + std::uint32_t(f), t, s.accumulate ? std::uint32_t(f) : 0);
+                const proto::TileResult r =
+                    renderer_.renderNow(pool_, firstFrame + std::uint32_t(f), t,
+                                        s.accumulate ? firstAccumulation + std::uint32_t(f) : 0);
                 frame.scatter(t, s.interleaveX, s.interleaveY, r.channels);
                 shadowRays_ += r.stats.shadowRays;
                 nonFinite_ += countNonFinite(r.channels);

@@ -92,7 +92,8 @@ void TileRenderer::renderChunk(TileJob& job, int begin, int end) {
             counters += set->buildRays;
         }
         local.vpls = std::uint32_t(set->direct.size() + set->indirect.size());
-        local.causticPhotons = std::uint32_t(set->caustics.photons().size());
+        local.causticPhotons =
+            std::uint32_t(set->caustics.photons().size() + set->indirectCaustics.photons().size());
         for (int i = begin; i < end; ++i) {
             const int x = job.tile.pixelX(i, n), y = job.tile.pixelY(i, n, m);
             const PixelResult r =

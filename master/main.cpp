@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
     auto* sppOpt = app.add_option("--spp", spp, "path tracer samples per pixel per frame");
     auto* interleaveOpt = app.add_option("--interleave", interleave, "interleaving pattern NxM");
     auto* filterOpt = app.add_option("--filter", filter, "discontinuity buffer size NxM");
-    std::string converge, roulette, compensation;
+    std::string converge, roulette, compensation, progressiveRadius, progressiveFilter;
     auto* convergeOpt =
         app.add_option("--converge", converge,
                        "on: accumulation converges (every mean below on); off: the paper's "
@@ -100,6 +100,14 @@ int main(int argc, char** argv) {
             ->check(CLI::IsMember({"on", "off"}));
     auto* rouletteOpt =
         app.add_option("--roulette", roulette, "on: light paths end by Russian roulette")
+            ->check(CLI::IsMember({"on", "off"}));
+    auto* progressiveRadiusOpt =
+        app.add_option("--progressive-radius", progressiveRadius,
+                       "on: the caustic radius shrinks as frames accumulate")
+            ->check(CLI::IsMember({"on", "off"}));
+    auto* progressiveFilterOpt =
+        app.add_option("--progressive-filter", progressiveFilter,
+                       "on: the discontinuity buffer withdraws where accumulation shows its blur")
             ->check(CLI::IsMember({"on", "off"}));
     auto* compensationOpt = app.add_option("--clamp-compensation", compensation,
                                            "what restores the energy the VPL bound removes")
@@ -132,6 +140,8 @@ int main(int argc, char** argv) {
          "safety cap on light path vertices under roulette"},
         {"--glossy-bound", "glossy_bound", false,
          "sharpness budget of VPL connections (1 and more; glossy lobes beyond it are sampled)"},
+        {"--indirect-caustic-radius", "indirect_caustic_radius", false,
+         "their gathering radius, fraction of the scene diagonal"},
         {"--indirect-caustic-photons", "indirect_caustic_photons", true,
          "photons shot from the VPLs at mirrors and glass per set"},
         {"--progressive-alpha", "progressive_alpha", false,
@@ -174,6 +184,8 @@ int main(int argc, char** argv) {
         if (convergeOpt->count()) render["converge"] = converge == "on";
         if (rouletteOpt->count()) render["roulette"] = roulette == "on";
         if (compensationOpt->count()) render["clamp_compensation"] = compensation;
+        if (progressiveRadiusOpt->count()) render["progressive_radius"] = progressiveRadius == "on";
+        if (progressiveFilterOpt->count()) render["progressive_filter"] = progressiveFilter == "on";
         for (const auto& n : numerics) {
             if (!n.option->count()) continue;
             if (n.integer && n.value != std::floor(n.value))

@@ -75,6 +75,7 @@ void writeRenderSettings(ByteWriter& out, const RenderSettings& s) {
     out.i32(s.rouletteMaxLength);
     out.u8(static_cast<std::uint8_t>(s.clampCompensation));
     out.i32(s.indirectCausticPhotons);
+    out.f32(s.indirectCausticRadius);
     out.f32(s.glossyBound);
     out.boolean(s.progressiveRadius);
     out.boolean(s.progressiveFilter);
@@ -113,6 +114,7 @@ RenderSettings readRenderSettings(ByteReader& in) {
         in.fail("unknown clamp compensation " + std::to_string(compensation));
     s.clampCompensation = static_cast<ClampCompensation>(compensation);
     s.indirectCausticPhotons = readInt(in, "indirectCausticPhotons", 0, 16 * kMi);
+    s.indirectCausticRadius = readFloat(in, "indirectCausticRadius", 0.0f, 1.0f);
     s.glossyBound = readFloat(in, "glossyBound", 1.0f, 1e6f);
     s.progressiveRadius = in.boolean();
     s.progressiveFilter = in.boolean();

@@ -112,6 +112,7 @@ inline SceneData sampleSceneData() {
     m.settings.clampCompensation = ClampCompensation::Shrink;
     m.settings.indirectCausticPhotons = 4321;
     m.settings.glossyBound = 2.5f;
+    m.settings.indirectCausticRadius = 0.07f;
     m.settings.progressiveRadius = false;
     m.settings.progressiveFilter = false;
     m.settings.progressiveAlpha = 0.5f;

@@ -83,6 +83,7 @@ void readConvergence(const JsonNode& section, RenderSettings& s) {
                                               : ClampCompensation::KolligKeller;
     }
     readInt(section, "indirect_caustic_photons", 0, 10000000, s.indirectCausticPhotons);
+    readFloat(section, "indirect_caustic_radius", NumberRange::open(0, 1), s.indirectCausticRadius);
     // The VPL bound's sharpness budget: 1 and more (1 leaves no glossy lobe to the VPLs).
     readFloat(section, "glossy_bound", NumberRange::closed(1, 1e6), s.glossyBound);
     if (auto v = section.find("progressive_radius")) s.progressiveRadius = v->boolean();
@@ -126,6 +127,7 @@ void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& setting
                        "roulette_max_length",
                        "clamp_compensation",
                        "indirect_caustic_photons",
+                       "indirect_caustic_radius",
                        "glossy_bound",
                        "progressive_radius",
                        "progressive_filter",
