@@ -82,8 +82,9 @@ LightingSet LightingSetBuilder::build(std::uint32_t frame, std::uint32_t accumul
     LightingSet set;
     // The first frame after a change is what a user sees while moving: it stays the paper's
     // estimator, as fast and as clean (the roulette's long paths are few and heavy, the
-    // compensation costs rays). The frames accumulated after it add what it leaves out, so
-    // the running mean converges all the same: its first frame's bias weighs 1 / frames.
+    // compensation and the VPLs' photons cost rays and time). The frames accumulated after it
+    // add what it leaves out, so the running mean converges all the same: its first frame's
+    // bias weighs 1 / frames.
     const bool accumulating = accumulation > 0;
     const bool compensate = settings_.clampCompensation == ClampCompensation::KolligKeller;
     set.roulette = settings_.roulette && accumulating;
@@ -105,9 +106,10 @@ LightingSet LightingSetBuilder::build(std::uint32_t frame, std::uint32_t accumul
     std::uint32_t shot = 0;
     auto photons = caustics_.shoot(frame, setIndex, shot, set.buildRays);
     std::vector<CausticPhoton> indirectPhotons;
-    caustics_.shootFromVpls(frame, setIndex, set.indirect,
-                            std::uint32_t(std::max(0, settings_.indirectCausticPhotons)),
-                            indirectPhotons, shot, set.buildRays);
+    if (accumulating)
+        caustics_.shootFromVpls(frame, setIndex, set.indirect,
+                                std::uint32_t(std::max(0, settings_.indirectCausticPhotons)),
+                                indirectPhotons, shot, set.buildRays);
     set.photonsShot = shot;
     const double radiusScale = std::sqrt(radiusShrink);
     set.caustics = CausticGrid(std::move(photons), float(double(caustics_.radius()) * radiusScale));

@@ -1,17 +1,26 @@
 #!/usr/bin/env bash
-# Speed against accuracy of igi and the peer comparison (docs/ACCURACY.md): sets up and builds
-# (scripts/setup.sh, plus python3-matplotlib and, with --peers, embree-tools and blender), then
-# runs scripts/accuracy_report.py, which renders converged references with our path tracer
-# (cached in out/reference/, reused when present), sweeps igi's parameters and accumulation,
-# compares every image with igi-compare and writes docs/accuracy/ (results.csv, results.md, one
-# plot per scene) and the generated blocks of docs/ACCURACY.md.
+# Speed against accuracy of igi, its convergence, and the peer comparison (docs/ACCURACY.md): sets
+# up and builds (scripts/setup.sh, plus python3-matplotlib and openimageio-tools and, with --peers,
+# embree-tools and blender), then runs scripts/accuracy_report.py, which renders converged
+# references with our path tracer (>= 4096 spp, cached in out/reference/, reused when present),
+# sweeps igi's parameters, accumulates igi (converging and --converge off) and our path tracer
+# for 60 s of render time, compares every image with igi-compare and writes docs/accuracy/
+# (results.csv, results.md, summary.json, one plot per scene) and the generated blocks of
+# docs/ACCURACY.md; it ends with a summary of which of the page's claims hold.
 #
-# Usage: scripts/bench_accuracy.sh [--quick] [--peers] [more accuracy_report.py options]
-#   --quick   smoke run of a few minutes: default scene, few points, weak reference; the report
-#             goes to out/accuracy-quick/report/ and docs/ are not touched
-#   --peers   also Blender Cycles (equal-time curves) and the Embree pathtracer probe
+# Usage: scripts/bench_accuracy.sh [--quick] [--peers] [--no-sweeps] [--baseline-build DIR]
+#                                  [more accuracy_report.py options, e.g. --scenes default,cornell-glossy]
+#   --quick           smoke run of a few minutes: default scene, few points, weak reference, curves
+#                     of 3 s; the report goes to out/accuracy-quick/report/ and docs/ are not touched
+#   --peers           also Blender Cycles (doubling spp until a render takes 60 s) and the Embree
+#                     pathtracer probe
+#   --no-sweeps       no parameter sweeps: the convergence part only
+#   --baseline-build DIR
+#                     a previous build (DIR/bin/igi-master, e.g. /work/base/build): its first frame
+#                     and accumulation curve at the same settings, and the ratios new / old
 # IGI_BUILD=/path/to/build uses that build (its bin/) instead of setting up and building build/.
-# A full run with --peers took 7.5 minutes on 2 shared cores at 320 x 240 (references included).
+# A full run with --peers and --baseline-build renders 6 scenes for 60 s each several times over,
+# plus the 4096-spp references the first time: expect one to two hours on 2 shared cores.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 

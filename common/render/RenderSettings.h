@@ -70,10 +70,10 @@ struct RenderSettings {
     float glossyBound = 4.0f;
     /// Photons shot per set from the VPLs at mirrors and glass (diffuse-specular-diffuse
     /// light, which no VPL can carry); 0 leaves that light out.
-    int indirectCausticPhotons = 4000;
+    int indirectCausticPhotons = 1000;
     /// Their gather radius, a fraction of the scene's diagonal: wider than the caustics', as
     /// the light they carry is smooth (and they are few per set).
-    float indirectCausticRadius = 0.03f;
+    float indirectCausticRadius = 0.05f;
     /// Progressive photon mapping (Knaus and Zwicker 2011): the caustic radius of accumulated
     /// frame i is r_i^2 = r_0^2 prod_{k=1..i} (k + alpha) / (k + 1) (render/ProgressiveSchedule.h).
     bool progressiveRadius = true;

@@ -2,11 +2,17 @@
 
 Usage:
   blender -b --factory-startup -P scripts/peers/cycles_render.py -- \
-      SCENE OUT_PREFIX WIDTH HEIGHT THREADS SPP [SPP ...]
+      SCENE OUT_PREFIX WIDTH HEIGHT THREADS SPP [SPP ...] [--until SECONDS [--max-spp N]]
 
 Writes OUT_PREFIX-<spp>spp.exr for every sample count, and OUT_PREFIX.json with the render time
 of each (seconds spent in bpy.ops.render.render, i.e. scene sync, BVH build and path tracing;
-Blender's own start-up is measured separately as "startup_seconds").
+Blender's own start-up is measured separately as "startup_seconds", and a first, unrecorded
+1-spp render as "warmup_seconds"). With --until, after the
+listed counts the count doubles, render after render, until one render has taken SECONDS or
+more (or the count would pass --max-spp, 65536 by default): the curve then spans that time.
+
+Faces whose corners repeat another face's are dropped first (igi_scene.read_obj: Cycles shadows
+a face by its twin, and McGuire's CornellBox-Original.obj has two); the JSON says how many.
 
 The scene is flattened by igi_scene.py (our transforms and MTL interpretation), then rebuilt
 with explicit Cycles shaders so that materials mean the same thing in both renderers:
@@ -134,9 +140,20 @@ def _camera(cam, width, height):
 
 
 def main(argv):
+    until, max_spp = None, 65536
+    if "--max-spp" in argv:
+        i = argv.index("--max-spp")
+        max_spp = int(argv[i + 1])
+        del argv[i:i + 2]
+    if "--until" in argv:
+        i = argv.index("--until")
+        until = float(argv[i + 1])
+        del argv[i:i + 2]
     scene_path, prefix, width, height, threads = argv[0], argv[1], int(argv[2]), int(argv[3]), int(argv[4])
-    spps = [int(a) for a in argv[5:]]
-    flat = igi_scene.flatten(scene_path, width, height)
+    spps = [int(a) for a in argv[5:]] or [1]
+    flat = igi_scene.flatten(scene_path, width, height, drop_duplicate_faces=True)
+    if flat["dropped_duplicate_faces"]:
+        print(f"cycles: dropped {flat['dropped_duplicate_faces']} face(s) repeating another face's corners", flush=True)
 
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj, do_unlink=True)
@@ -187,14 +204,32 @@ def main(argv):
     scene.render.image_settings.color_depth = "32"
     scene.render.image_settings.exr_codec = "ZIP"
 
-    results = {"startup_seconds": time.time() - START, "renders": []}
-    for spp in spps:
+    results = {"startup_seconds": time.time() - START, "renders": [],
+               "dropped_duplicate_faces": flat["dropped_duplicate_faces"], "until_seconds": until}
+
+    # One render first, not recorded: the first render of a session pays for start-up (kernel
+    # loading, ...) that the others do not; without it a 1-spp render takes longer than 2 spp.
+    cycles.samples = 1
+    scene.render.filepath = f"{prefix}-warmup.exr"
+    t0 = time.time()
+    bpy.ops.render.render(write_still=True)
+    results["warmup_seconds"] = time.time() - t0
+
+    def render(spp):
         cycles.samples = spp
         scene.render.filepath = f"{prefix}-{spp}spp.exr"
         t0 = time.time()
         bpy.ops.render.render(write_still=True)
         results["renders"].append({"spp": spp, "seconds": time.time() - t0, "image": scene.render.filepath})
         print(f"cycles: {spp} spp in {results['renders'][-1]['seconds']:.2f} s", flush=True)
+
+    for spp in spps:
+        render(spp)
+    if until is not None:
+        spp = max(spps)
+        while (not results["renders"] or results["renders"][-1]["seconds"] < until) and spp * 2 <= max_spp:
+            spp *= 2
+            render(spp)
     with open(prefix + ".json", "w", encoding="utf-8") as f:
         json.dump(results, f, indent=1)
 

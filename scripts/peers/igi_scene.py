@@ -107,11 +107,32 @@ def _material_from_mtl(m):
     return mat
 
 
-def read_obj(path, transform, mesh_name):
-    """Triangulated, world-space groups of one OBJ file, one per material; and its materials."""
+def _default_material():
+    """Our loader's material for a name it cannot find: grey, Kd 0.8 (docs/SCENE_FORMAT.md)."""
+    return {"type": "diffuse", "diffuse": [0.8] * 3, "specular": [0.0] * 3, "ior": 1.5,
+            "emission": [0.0] * 3}
+
+
+def _face_key(points):
+    """The set of a face's corner positions (rounded): equal for a face and its twin."""
+    return frozenset(tuple(round(c, 6) for c in p) for p in points)
+
+
+def read_obj(path, transform, mesh_name, drop_duplicate_faces=False, seen_faces=None):
+    """Triangulated, world-space groups of one OBJ file, one per material; its materials; and
+    the number of faces dropped as duplicates.
+
+    With `drop_duplicate_faces`, a face whose set of corner positions repeats an earlier face's
+    (of this file, or of `seen_faces`, a set shared across files) is left out. McGuire's Cornell
+    boxes have such twins: CornellBox-Original.obj's tall box lists its front face a second time
+    by relative indices (its "bottom face", `f -8 -7 -6 -5`, reuses the front face's vertices),
+    and the short box's right face likewise. Our renderer draws a twin on top of its face
+    harmlessly; Blender Cycles shadows a face by its twin and renders it nearly black."""
     folder = os.path.dirname(path)
     positions, normals, materials = [], [], {}
     groups, current = {}, "default"
+    seen = seen_faces if seen_faces is not None else set()
+    dropped = 0
     for key, args in _statements(path):
         if key == "v":
             positions.append(transform.point([float(a) for a in args[:3]]))
@@ -132,11 +153,19 @@ def read_obj(path, transform, mesh_name):
                     ni = int(parts[2])
                     ni = ni - 1 if ni > 0 else len(normals) + ni
                 corners.append((vi, ni))
+            if drop_duplicate_faces:
+                key = _face_key([positions[vi] for vi, _ in corners])
+                if key in seen:
+                    dropped += 1
+                    continue
+                seen.add(key)
             group = groups.setdefault(current, [])
             for k in range(1, len(corners) - 1):
                 group.append((corners[0], corners[k], corners[k + 1]))
-    materials.setdefault("default", {"type": "diffuse", "diffuse": [0.8] * 3,
-                                     "specular": [0.0] * 3, "ior": 1.5, "emission": [0.0] * 3})
+    # A material the MTL lacks (or no MTL): our loader's default material under that name, which
+    # a scene file's "materials" section can then set (CornellBox-Glossy.obj's `light`).
+    for name in list(groups) + ["default"]:
+        materials.setdefault(name, _default_material())
     meshes = []
     for material, triangles in groups.items():
         index, mesh_pos, mesh_nrm, tris = {}, [], [], []
@@ -155,7 +184,7 @@ def read_obj(path, transform, mesh_name):
         meshes.append({"name": f"{mesh_name}/{material}", "material": material,
                        "positions": mesh_pos, "normals": mesh_nrm if has_normals else None,
                        "triangles": tris})
-    return meshes, materials
+    return meshes, materials, dropped
 
 
 def _frame_camera(bounds, width, height):
@@ -171,7 +200,10 @@ def _frame_camera(bounds, width, height):
             "up": [0.0, 1.0, 0.0], "fov_y": 45.0}
 
 
-def flatten(scene_path, width=None, height=None):
+def flatten(scene_path, width=None, height=None, drop_duplicate_faces=False):
+    """The scene as world-space triangles (see the module's docstring). With
+    `drop_duplicate_faces`, faces that repeat another face's corners are left out (read_obj);
+    their number is returned as "dropped_duplicate_faces"."""
     if scene_path.lower().endswith(".obj"):
         spec = {"meshes": [{"file": os.path.basename(scene_path)}]}
     else:
@@ -182,11 +214,12 @@ def flatten(scene_path, width=None, height=None):
     width = width or image.get("width", 640)
     height = height or image.get("height", 480)
 
-    meshes, materials = [], {}
+    meshes, materials, dropped, seen_faces = [], {}, 0, set()
     for entry in spec.get("meshes", []):
         path = os.path.join(folder, entry["file"])
         name = entry.get("name", os.path.splitext(os.path.basename(path))[0])
-        m, mats = read_obj(path, Transform(entry.get("transform")), name)
+        m, mats, d = read_obj(path, Transform(entry.get("transform")), name, drop_duplicate_faces, seen_faces)
+        dropped += d
         # Materials are per file in igi; names are unique across these scenes' files, so one
         # dictionary is enough here (a clash would be reported rather than silently merged).
         for key, value in mats.items():
@@ -195,6 +228,7 @@ def flatten(scene_path, width=None, height=None):
             materials[key] = value
         meshes += m
     for name, override in spec.get("materials", {}).items():
+        materials.setdefault(name, _default_material())
         for key, value in override.items():
             materials[name][key] = value if key in ("type", "ior", "phong_exponent") else _vec(value)
 
@@ -219,7 +253,7 @@ def flatten(scene_path, width=None, height=None):
     camera = {"position": _vec(camera["position"]), "look_at": _vec(camera["look_at"]),
               "up": _vec(camera.get("up", [0, 1, 0])), "fov_y": float(camera.get("fov_y", 45.0))}
     return {"camera": camera, "width": width, "height": height, "materials": materials,
-            "meshes": meshes, "quad_lights": quads, "bounds": bounds}
+            "meshes": meshes, "quad_lights": quads, "bounds": bounds, "dropped_duplicate_faces": dropped}
 
 
 if __name__ == "__main__":
