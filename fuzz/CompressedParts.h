@@ -33,7 +33,7 @@ inline std::vector<std::uint8_t> sceneDataPayloadFromBody(Bytes body) {
 }
 
 /// The planes of a TileResult as the fuzzer gives them: u8 plane mask, u8 sent mask, the f32
-/// references the sent planes need (irradiance, depth, unfiltered), then the raw shuffled
+/// references the sent planes need (irradiance, depth, unfiltered, glossy), then the raw shuffled
 /// plane bytes. The pixel count is what the raw bytes hold; left-over bytes are ignored.
 struct TilePlanesInput {
     std::uint32_t planes = 0;
@@ -49,7 +49,7 @@ inline std::optional<TilePlanesInput> parseTilePlanes(Bytes in) {
     t.planes = in[0];  // unknown bits are left in: the decoder must refuse them
     t.sent = in[1];
     in = in.subspan(2);
-    for (std::uint32_t bit : {kIrradiance, kDepth, kUnfiltered}) {
+    for (std::uint32_t bit : {kIrradiance, kDepth, kUnfiltered, kGlossy}) {
         if (!(t.sent & bit)) continue;
         if (in.size() < 4) return std::nullopt;
         std::uint32_t v = 0;

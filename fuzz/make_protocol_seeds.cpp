@@ -106,7 +106,7 @@ Bytes tilePlanes(const Bytes& payload) {
     in.bytes(4 + 8 + 8 + 4 + 4 + 4 + 4);  // tile id and statistics
     const std::uint32_t count = in.u32(), planes = in.u32(), sent = in.u32();
     Bytes out{static_cast<std::uint8_t>(planes), static_cast<std::uint8_t>(sent)};
-    for (std::uint32_t bit : {igi::kIrradiance, igi::kDepth, igi::kUnfiltered}) {
+    for (std::uint32_t bit : {igi::kIrradiance, igi::kDepth, igi::kUnfiltered, igi::kGlossy}) {
         if (!(sent & bit)) continue;
         const auto reference = in.bytes(4);
         out.insert(out.end(), reference.begin(), reference.end());
