@@ -52,14 +52,16 @@ Image renderChecked(const Scene& scene, int frames) {
 
 /// One frame as the master shows it before accumulation: every tile's planes through the wire
 /// codec (quantization, compression) and back, then the discontinuity buffer.
-Image wireFrame(InProcessRenderer& renderer, const Scene& scene, std::uint32_t frame) {
+Image wireFrame(InProcessRenderer& renderer, const Scene& scene, std::uint32_t frame,
+                std::uint32_t accumulation = 0) {
     const RenderSettings& s = scene.render;
     const int w = scene.image.width, h = scene.image.height;
     const auto tiles = makeTiles(w, h, s.interleaveX, s.interleaveY, s.tileSize);
     FrameBuffer buffer;
     buffer.reset(w, h);
     for (std::uint32_t i = 0; i < tiles.size(); ++i) {
-        proto::TileResult r = renderer.renderer().renderNow(renderer.pool(), frame, tiles[i]);
+        proto::TileResult r =
+            renderer.renderer().renderNow(renderer.pool(), frame, tiles[i], accumulation);
         r.tileId = i;
         EXPECT_EQ(testing::countNonFinite(r.channels), 0u) << "tile " << i;
         const auto encoded = proto::encodeMessage(r, frame, 0);
@@ -143,9 +145,29 @@ const char* nameOf(IntegratorKind kind) {
 struct ScaleCase {
     IntegratorKind integrator;
     int frames;
+    bool glossy = false;
 };
 void PrintTo(const ScaleCase& c, std::ostream* os) {
-    *os << nameOf(c.integrator) << ", " << c.frames << " frames";
+    *os << nameOf(c.integrator) << ", " << c.frames << " frames" << (c.glossy ? ", glossy" : "");
+}
+
+/// The Cornell box of testing::cornellBox with its walls and box made glossy (Ks 0.2, Ns 40;
+/// the floor Ns 400): the glossy bound, the MIS pair and the compensation at every scale.
+Scene glossyCornellBox(float scale) {
+    Scene scene = testing::cornellBox(scale, /*glassBall=*/true);
+    for (int m = 0; m < 3; ++m) {
+        scene.materials[m].diffuse *= 0.75f;
+        scene.materials[m].specular = glm::vec3(0.2f);
+        scene.materials[m].phongExponent = 40;
+        scene.materials[m].reflection = Reflection::Glossy;
+    }
+    Material floor = scene.materials[0];
+    floor.name = "glossy floor";
+    floor.phongExponent = 400;
+    scene.materials.push_back(floor);
+    scene.meshes[0].materialIds.assign(scene.meshes[0].materialIds.size(),
+                                       std::uint32_t(scene.materials.size() - 1));
+    return scene;
 }
 
 class SceneScale : public ::testing::TestWithParam<ScaleCase> {};
@@ -155,7 +177,7 @@ class SceneScale : public ::testing::TestWithParam<ScaleCase> {};
 TEST_P(SceneScale, ACornellBoxWithAGlassBallLooksTheSameFrom1eMinus4To1e4) {
     const ScaleCase c = GetParam();
     auto sceneAt = [&](float scale) {
-        Scene scene = testing::cornellBox(scale, /*glassBall=*/true);
+        Scene scene = c.glossy ? glossyCornellBox(scale) : testing::cornellBox(scale, true);
         scene.render.integrator = c.integrator;
         scene.render.pathSamples = 8;
         return scene;
@@ -177,23 +199,41 @@ TEST_P(SceneScale, ACornellBoxWithAGlassBallLooksTheSameFrom1eMinus4To1e4) {
 
 INSTANTIATE_TEST_SUITE_P(Integrators, SceneScale,
                          ::testing::Values(ScaleCase{IntegratorKind::Igi, 4},
-                                           ScaleCase{IntegratorKind::Path, 1}),
-                         [](const auto& info) { return nameOf(info.param.integrator); });
+                                           ScaleCase{IntegratorKind::Path, 1},
+                                           ScaleCase{IntegratorKind::Igi, 4, true},
+                                           ScaleCase{IntegratorKind::Path, 1, true}),
+                         [](const auto& info) {
+                             return std::string(nameOf(info.param.integrator)) +
+                                    (info.param.glossy ? "Glossy" : "");
+                         });
 
 // ---- Light intensity against exposure --------------------------------------------------------
 
+struct IntensityCase {
+    bool glossy;
+    std::uint32_t accumulation;  ///< 0: the paper's estimator; > 0: the converging one
+};
+void PrintTo(const IntensityCase& c, std::ostream* os) {
+    *os << (c.glossy ? "glossy" : "diffuse") << ", accumulation " << c.accumulation;
+}
+
+class LightIntensity : public ::testing::TestWithParam<IntensityCase> {};
+
 // Radiance and intensity times s, exposure -log2(s): after the wire's quantization and the
-// discontinuity buffer, the 8-bit display values are those of s = 1 within one code.
-TEST(LightIntensity, From1eMinus6To1e6TheDisplayedImageMatchesWithinOneCode) {
-    auto sceneWith = [](float s) {
-        Scene scene = testing::cornellBox(1.0f, /*glassBall=*/true);
+// discontinuity buffer, the 8-bit display values are those of s = 1 within one code. In an
+// accumulated frame too: the roulette and the compensation decide by albedo and geometry, never
+// by how bright a path is.
+TEST_P(LightIntensity, From1eMinus6To1e6TheDisplayedImageMatchesWithinOneCode) {
+    const IntensityCase c = GetParam();
+    auto sceneWith = [&](float s) {
+        Scene scene = c.glossy ? glossyCornellBox(1.0f) : testing::cornellBox(1.0f, true);
         scene.quadLights[0].radiance *= s;
         scene.pointLights[0].intensity *= s;
         return scene;
     };
     const Scene base = sceneWith(1.0f);
     InProcessRenderer baseRenderer(base);
-    const Image reference = wireFrame(baseRenderer, base, 0);
+    const Image reference = wireFrame(baseRenderer, base, 0, c.accumulation);
     int midtones = 0;
     for (const auto& p : reference.pixels) {
         const int code = toneMapChannel(p.y, 1.0f);
@@ -205,7 +245,7 @@ TEST(LightIntensity, From1eMinus6To1e6TheDisplayedImageMatchesWithinOneCode) {
         SCOPED_TRACE("intensity x " + std::to_string(s));
         const Scene scene = sceneWith(s);
         InProcessRenderer renderer(scene);
-        const Image image = wireFrame(renderer, scene, 0);
+        const Image image = wireFrame(renderer, scene, 0, c.accumulation);
         const float exposureScale = std::exp2(-std::log2(s));
         int worst = 0;
         for (std::size_t i = 0; i < image.pixels.size(); ++i)
@@ -217,6 +257,14 @@ TEST(LightIntensity, From1eMinus6To1e6TheDisplayedImageMatchesWithinOneCode) {
         EXPECT_LE(worst, 1);
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(Materials, LightIntensity,
+                         ::testing::Values(IntensityCase{false, 0}, IntensityCase{true, 0},
+                                           IntensityCase{true, 2}),
+                         [](const auto& info) {
+                             return std::string(info.param.glossy ? "Glossy" : "Diffuse") +
+                                    "Accumulation" + std::to_string(info.param.accumulation);
+                         });
 
 // ---- Albedo 0 and 0.999 -----------------------------------------------------------------------
 
@@ -267,6 +315,29 @@ TEST(Albedo, NearOneWithRouletteIsTheSeriesUpToTheCap) {
     const double mean = testing::meanOf(image).x;
     std::printf("albedo 0.999 with roulette: mean %.4g, expected %.4g\n", mean, expected);
     EXPECT_NEAR(mean / expected, 1.0, 0.02);
+    for (const auto& p : image.pixels) ASSERT_LT(p.x, rho / (kPi * (1.0 - rho)));
+}
+
+// Kd + Ks = 0.999 with a Phong lobe (Ns 40), in accumulated frames: the glossy bound, the
+// MIS pair, the compensation's recursion and the roulette through glossy vertices must keep
+// every pixel finite and below the diffuse sphere's bound (a normalized Phong lobe loses the
+// part of its cone below the horizon, so it reflects at most as much as Kd + Ks would), and
+// above the direct light alone.
+TEST(Albedo, NearOneGlossyStaysFiniteAndBounded) {
+    const float rho = 0.999f;
+    Scene scene = closedSphere(rho);
+    scene.materials[0].diffuse = glm::vec3(0.799f);
+    scene.materials[0].specular = glm::vec3(0.2f);
+    scene.materials[0].phongExponent = 40;
+    scene.materials[0].reflection = Reflection::Glossy;
+    scene.render.rouletteMaxLength = 24;
+    InProcessRenderer renderer(scene);
+    const Image image = renderer.render(4, 0, /*firstAccumulation=*/1);
+    EXPECT_EQ(renderer.nonFiniteValues(), 0u);
+    ASSERT_TRUE(allFinite(image));
+    const double mean = testing::meanOf(image).x;
+    std::printf("glossy albedo 0.999: mean %.4g, direct alone %.4g\n", mean, 0.799 / kPi);
+    EXPECT_GT(mean, 2 * 0.799 / kPi) << "the bounces are missing";
     for (const auto& p : image.pixels) ASSERT_LT(p.x, rho / (kPi * (1.0 - rho)));
 }
 
