@@ -341,8 +341,8 @@ class Bench:
                      reference=ref)
 
     def first_frame(self, name, scene, ref):
-        """One frame of the new and of the baseline build at the same (default) settings: the
-        first accumulated image (frame 0) of sessions of --first-frame-frames frames, seeds 1..R,
+        """One frame of the new and of the baseline build at the same (default) settings: frame 0
+        of sessions of --first-frame-frames frames without accumulation, seeds 1..R,
         the builds alternated so that both see the same load. relMSE: mean over the seeds;
         seconds per frame: median of the sessions' throughput."""
         a = self.args
@@ -357,7 +357,10 @@ class Bench:
             for label, b in order:
                 pattern = os.path.join(d, f"first-{label}-seed{seed}-%04d.exr")
                 clear_sequence(pattern)
-                extra = ["--seed", str(seed)]
+                # Without accumulation every frame is a first frame (accumulation 0, the paper's
+                # estimator), so the sessions' throughput is the first frame's cost; accumulated
+                # frames of the new build would add the converging estimator's extra work.
+                extra = ["--seed", str(seed), "--no-accumulate"]
                 if label == "new":
                     extra += ["--sequence-frames", "0"]
                 r = self.master(scene, extra, os.path.join(d, f"first-{label}-seed{seed}.exr"),
@@ -860,7 +863,7 @@ def first_frame_table(bench, conv):
         return "- no baseline build given (`scripts/bench_accuracy.sh --baseline-build DIR`)"
     a = bench.args
     lines = [f"- baseline build: `{bench.base_bin}`; {a.first_frame_repeats} sessions of {a.first_frame_frames} frames "
-             "per build and scene (seeds 1, 2, ...), the builds alternated; relMSE of the first frame: mean over the "
+             "without accumulation per build and scene (seeds 1, 2, ...), the builds alternated; relMSE of the first frame: mean over the "
              "seeds; seconds per frame: median of the sessions' throughput",
              "",
              "| scene | relMSE new | relMSE old | ratio | s/frame new | s/frame old | ratio | bias new | bias old | "
