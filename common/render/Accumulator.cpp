@@ -1,6 +1,7 @@
 #include "render/Accumulator.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "math/Color.h"
 
@@ -38,8 +39,24 @@ void Accumulator::addRows(const std::vector<glm::vec3>& filtered,
     }
 }
 
+double Accumulator::blurTolerance(int frames) {
+    // t_{0.975}(nu) for nu = 1 .. 30 degrees of freedom.
+    static constexpr double kT[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306,
+                                    2.262,  2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120,
+                                    2.110,  2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064,
+                                    2.060,  2.056, 2.052, 2.048, 2.045, 2.042};
+    const int nu = std::max(1, frames - 1);
+    // Beyond the table, the first terms of the Cornish-Fisher expansion around z = 1.96.
+    constexpr double z = 1.959964;
+    const double g1 = (z * z * z + z) / 4.0;
+    const double g2 = (5.0 * std::pow(z, 5) + 16.0 * z * z * z + 3.0 * z) / 96.0;
+    const double t = nu <= 30 ? kT[nu - 1] : z + g1 / nu + g2 / (double(nu) * nu);
+    return t * t;
+}
+
 void Accumulator::meanRows(std::vector<glm::vec3>& out, int rowBegin, int rowEnd) const {
     const double n = frames_;
+    const double tolerance = blurTolerance(frames_);
     const double inv = frames_ > 0 ? 1.0 / n : 0.0;
     for (std::size_t p = std::size_t(rowBegin) * width_; p < std::size_t(rowEnd) * width_; ++p) {
         const glm::dvec3 filtered(sum_[3 * p] * inv, sum_[3 * p + 1] * inv, sum_[3 * p + 2] * inv);
@@ -53,7 +70,7 @@ void Accumulator::meanRows(std::vector<glm::vec3>& out, int rowBegin, int rowEnd
                          (0.2126 * unfiltered.x + 0.7152 * unfiltered.y + 0.0722 * unfiltered.z);
         // The variance of the mean difference: the frames' sample variance over their count.
         const double variance = std::max(0.0, sumDifference2_[p] * inv - d * d) / (n - 1.0);
-        const double allowed = kBlurTolerance * variance;
+        const double allowed = tolerance * variance;
         const double w = d * d <= allowed ? 1.0 : allowed / (d * d);
         out[p] = glm::vec3(w * filtered + (1.0 - w) * unfiltered);
     }

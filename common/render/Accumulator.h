@@ -20,14 +20,18 @@ namespace igi {
 /// image would converge to a blurred image instead of the true one. Per pixel, with D the
 /// difference of the two means' luminances and s^2 the variance of that difference (from the
 /// frames' own differences), the weight of the filtered mean is 1 if D^2 <= k s^2 and
-/// k s^2 / D^2 otherwise (k = kBlurTolerance): as frames come in s^2 falls like 1 / frames, so
-/// where the blur has a bias b the weight falls like 1 / (b^2 frames) and the mean converges
-/// to the unfiltered, unbiased one; where it has none, D stays within its noise and the
-/// filtered mean (with about a ninth of the variance) stays.
+/// k s^2 / D^2 otherwise (k = blurTolerance(frames)): as frames come in s^2 falls like 1 / frames,
+/// so where the blur has a bias b the weight falls like 1 / (b^2 frames) and the mean converges to
+/// the unfiltered, unbiased one; where it has none, D stays within its noise and the filtered mean
+/// (with about a ninth of the variance) stays.
 class Accumulator {
   public:
-    /// Two standard deviations: a bias is believed when the difference exceeds them.
-    static constexpr double kBlurTolerance = 4.0;
+    /// A bias is believed when the difference exceeds what a two-sided t-test at 95 % allows:
+    /// the squared 0.975 quantile of Student's t with frames - 1 degrees of freedom (about
+    /// 2 standard deviations once many frames are in, but 12.7 of them with 2 frames, where
+    /// the variance itself rests on one difference and believing it would withdraw the blur
+    /// from half the image on noise alone).
+    static double blurTolerance(int frames);
 
     void reset(int width, int height, bool withdrawBlur = false);
     /// Adds rows [rowBegin, rowEnd) of a frame; call endFrame() once all rows are in.
