@@ -1,6 +1,12 @@
 // A scene rebuilt from its bundle (what a client receives) equals the one loaded from disk.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include "scene/SceneLoader.h"
 #include "scene/TestScenes.h"
@@ -114,6 +120,47 @@ TEST(SceneLoader, BareGltfIsAScene) {
     EXPECT_EQ(dark.pointLights[0].name, "headlight");
     EXPECT_NE(bundle.sceneText.find("headlight"), std::string::npos);
     expectRoundTrip(plain);
+}
+
+/// `text` read whole from `path`.
+std::string readAll(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// The same plain model as a binary glTF (its buffer in the GLB's BIN chunk) is a scene too.
+TEST(SceneLoader, BareGlbIsAScene) {
+    const auto dir = test::testdataDir() / "gltf";
+    std::string json = readAll(dir / "plain.gltf");
+    const std::string uri = R"("uri": "plain.bin",)";
+    const auto at = json.find(uri);
+    ASSERT_NE(at, std::string::npos) << "plain.gltf names its buffer differently";
+    json.erase(at, uri.size());  // a buffer without uri is the GLB's BIN chunk
+    std::string bin = readAll(dir / "plain.bin");
+    while (json.size() % 4) json += ' ';
+    while (bin.size() % 4) bin += '\0';
+    auto u32 = [](std::uint32_t v) {
+        std::string b(4, '\0');
+        for (int i = 0; i < 4; ++i) b[i] = char(v >> (8 * i));
+        return b;
+    };
+    const auto length = std::uint32_t(12 + 8 + json.size() + 8 + bin.size());
+    const std::string glb = "glTF" + u32(2) + u32(length) + u32(std::uint32_t(json.size())) +
+                            "JSON" + json + u32(std::uint32_t(bin.size())) +
+                            std::string("BIN\0", 4) + bin;
+    const auto path = std::filesystem::temp_directory_path() /
+                      ("igi-bare-glb-" + std::to_string(::getpid()) + ".glb");
+    std::ofstream(path, std::ios::binary) << glb;
+    SceneBundle bundle;
+    const Scene scene = loadSceneFile(path, &bundle);
+    std::filesystem::remove(path);
+    const Scene gltf = loadSceneFile(dir / "plain.gltf");
+    ASSERT_EQ(scene.meshes.size(), gltf.meshes.size());
+    EXPECT_EQ(scene.meshes[0].positions, gltf.meshes[0].positions);
+    EXPECT_EQ(scene.meshes[0].triangles, gltf.meshes[0].triangles);
+    ASSERT_EQ(scene.pointLights.size(), 1u);
+    EXPECT_EQ(scene.pointLights[0].name, "headlight");
+    EXPECT_EQ(scene.camera.position, gltf.camera.position) << "auto-framed the same way";
 }
 
 TEST(SceneLoader, BareSharedGltfScenes) {
