@@ -95,6 +95,8 @@ LightingSet LightingSetBuilder::build(std::uint32_t frame, std::uint32_t accumul
     // The sharpness budget needs something to restore what it removes: without compensation a
     // glossy lobe is left whole (it is not singular, only noisy).
     if (compensate) set.sharpnessBudget = settings_.glossyBound;
+    if (compensate && accumulating)
+        set.minDistance2 *= kAccumulatedClampScale * kAccumulatedClampScale;
     if (settings_.clampCompensation == ClampCompensation::Shrink) {
         set.minDistance2 = float(double(set.minDistance2) * shrink);
         set.sharpnessBudget = float(double(settings_.glossyBound) / shrink);

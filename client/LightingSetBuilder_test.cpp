@@ -96,7 +96,8 @@ TEST(LightingSetBuilder, RouletteContinuesThePapersWalk) {
 }
 
 // The caustic gather radius shrinks with the frame's place in the accumulation, as progressive
-// photon mapping says, and the bound's distance shrinks only when asked to.
+// photon mapping says, and the bound's distance shrinks only when asked to (and is wider in the
+// accumulated frames with Kollig-Keller compensation).
 TEST(LightingSetBuilder, ProgressiveRadiusAndShrinkingClamp) {
     Scene scene = testing::cornellBox(1.0f, /*glassBall=*/true);
     InProcessRenderer r(scene);
@@ -105,7 +106,11 @@ TEST(LightingSetBuilder, ProgressiveRadiusAndShrinkingClamp) {
     const double scale = progressiveScale(scene.render.progressiveAlpha, 40);
     EXPECT_LT(scale, 0.5);
     EXPECT_NEAR(later.caustics.radius() / first.caustics.radius(), std::sqrt(scale), 1e-5);
-    EXPECT_EQ(later.minDistance2, first.minDistance2);  // Kollig-Keller: the bound stays
+    // Kollig-Keller: the accumulated frames' bound is wider by a constant factor, what it
+    // removes being restored, and it does not shrink.
+    const float wider = LightingSetBuilder::kAccumulatedClampScale;
+    EXPECT_FLOAT_EQ(later.minDistance2, first.minDistance2 * wider * wider);
+    EXPECT_EQ(builder.build(5, 1, 2).minDistance2, later.minDistance2);
     scene.render.clampCompensation = ClampCompensation::Shrink;
     scene.render.progressiveRadius = false;
     InProcessRenderer shrinking(scene);
