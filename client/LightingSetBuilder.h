@@ -43,10 +43,8 @@ class LightingSetBuilder {
     /// The bound's distance in the frames after the first, as a multiple of clamp_distance.
     /// The compensation restores whatever the bound removes, so this trades VPL noise (a VPL
     /// close to a dark crease, within the paper's bound, is a spike there) against the
-    /// continuation's noise. Measured at 160 x 120 with 1 (the paper's) and 2, on six scenes:
-    /// 2 lowers relMSE after 16, 32 and 256 frames on all six (2-26 %; the interiors and the
-    /// Cornell boxes without glass gain most) at 0-9 % more time per frame, and removes the
-    /// crease's speckle on CornellBox-Glossy; the first frame keeps the paper's bound.
+    /// continuation's noise; 2 lowered relMSE on every scene measured (docs/ACCURACY.md,
+    /// "After the run"); the first frame keeps the paper's bound.
     static constexpr float kAccumulatedClampScale = 2.0f;
 
   private:
