@@ -24,7 +24,7 @@ FrameCompositor::FrameCompositor(int width, int height, const RenderSettings& se
       filtered_(width, height),
       unfiltered_(withdrawBlur(settings) ? width : 0, withdrawBlur(settings) ? height : 0),
       shown_(width, height) {
-    accumulator_.reset(width, height, withdrawBlur(settings));
+    accumulator_.reset(width, height, withdrawBlur(settings), filter_.sizeX, filter_.sizeY);
 }
 
 template <typename F>
@@ -55,7 +55,7 @@ const Image& FrameCompositor::composite(const FrameBuffer& frame) {
 }
 
 void FrameCompositor::resetAccumulation() {
-    accumulator_.reset(width_, height_, accumulator_.withdrawsBlur());
+    accumulator_.reset(width_, height_, accumulator_.withdrawsBlur(), filter_.sizeX, filter_.sizeY);
 }
 
 }  // namespace igi

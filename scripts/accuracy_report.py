@@ -340,6 +340,28 @@ class Bench:
                      time=spf * k, wall=r["wall"], rays=r["shadow_rays_per_pixel"], image=pattern % (k - 1),
                      reference=ref)
 
+    def compensation(self, name, scene, ref):
+        """The choice of what restores the energy the VPL bound removes (`clamp_compensation`): the
+        other two choices, accumulated for as many frames as the bias figures use, beside the
+        default's curve (Kollig-Keller), at equal frame counts."""
+        a = self.args
+        d = os.path.join(self.work, name)
+        n = max(SLOPE_TO, BIAS_FRAMES) if not a.quick else a.min_frames
+        ks = [k for k in (SLOPE_FROM, SPECKLE_FRAMES[-1], n) if k <= n]
+        for choice in ("shrink", "off"):
+            renderer = f"igi-comp-{choice}"
+            pattern = os.path.join(d, f"{renderer}-acc-%04d.exr")
+            clear_sequence(pattern)
+            log(f"{name}: {renderer}: accumulating {n} frames")
+            r = self.master(scene, ["--clamp-compensation", choice, "--sequence-frames",
+                                    ",".join(str(k - 1) for k in sorted(set(ks)))],
+                            os.path.join(d, f"{renderer}-acc.exr"), n, sequence=pattern)
+            spf = r["seconds"] / r["frames"]
+            for k in sorted(set(ks)):
+                self.add(scene=name, renderer=renderer, sweep="compensation", value=str(k), frames=k, spf=spf,
+                         time=spf * k, wall=r["wall"], rays=r["shadow_rays_per_pixel"], image=pattern % (k - 1),
+                         reference=ref)
+
     def first_frame(self, name, scene, ref):
         """One frame of the new and of the baseline build at the same (default) settings: frame 0
         of sessions of --first-frame-frames frames without accumulation, seeds 1..R,
@@ -388,6 +410,7 @@ class Bench:
         self.accumulation(name, scene, ref, "igi", [], "frames")
         self.accumulation(name, scene, ref, "igi-off", ["--converge", "off"], "frames")
         self.accumulation(name, scene, ref, "igi-path", ["--integrator", "path", "--spp", "1"], "spp")
+        self.compensation(name, scene, ref)
         if self.base_bin:
             if spec.baseline_skip:
                 self.notes.append(f"{name}: no baseline build run: {spec.baseline_skip}.")
@@ -521,7 +544,7 @@ def curve(rows, scene, renderer):
 
 def at_frames(rows, scene, renderer, k):
     for r in rows:
-        if r["scene"] == scene and r["renderer"] == renderer and r["sweep"] in ("frames", "spp") and r["frames"] == k:
+        if r["scene"] == scene and r["renderer"] == renderer and r["sweep"] in ("frames", "spp", "compensation") and r["frames"] == k:
             return r
     return None
 
@@ -858,6 +881,39 @@ def convergence_tables(bench, conv):
     return "\n".join(t1) + "\n\n" + "\n".join(t2)
 
 
+def compensation_table(bench, conv):
+    """relMSE and bias of the three `clamp_compensation` choices at equal accumulated frames."""
+    rows = bench.rows
+    ks = sorted({r["frames"] for r in rows if r["renderer"].startswith("igi-comp-")})
+    if not ks:
+        return "- not run"
+    head = " | ".join(f"relMSE after {k}" for k in ks)
+    lines = ["relMSE (and bias) at equal accumulated frames; `kollig-keller` is the default curve above, "
+             "the other two are sessions of their own with only `--clamp-compensation` changed; "
+             "s/frame from each session",
+             "",
+             f"| scene | choice | s/frame | {head} | bias after {ks[-1]} |",
+             "|---|---|---|" + "---|" * len(ks) + "---|"]
+    for scene in conv:
+        best = {}
+        cells = {}
+        for choice, renderer in (("kollig-keller", "igi"), ("shrink", "igi-comp-shrink"), ("off", "igi-comp-off")):
+            at = [at_frames(rows, scene, renderer, k) for k in ks]
+            cells[choice] = at
+            for k, r in zip(ks, at):
+                if r and (k not in best or r["relmse"] < best[k]):
+                    best[k] = r["relmse"]
+        for choice, at in cells.items():
+            spf = next((num(r["spf"]) for r in at if r), "n/a")
+            errs = " | ".join("n/a" if r is None else (f"**{num(r['relmse'])}**" if r["relmse"] == best.get(k) else num(r["relmse"]))
+                              for k, r in zip(ks, at))
+            bias = pct(at[-1]["bias"]) if at[-1] else "n/a"
+            lines.append(f"| {scene} | {choice} | {spf} | {errs} | {bias} |")
+    lines.append("")
+    lines.append("Bold: the lowest relMSE of the three at that frame count.")
+    return "\n".join(lines)
+
+
 def first_frame_table(bench, conv):
     if not bench.base_bin:
         return "- no baseline build given (`scripts/bench_accuracy.sh --baseline-build DIR`)"
@@ -942,6 +998,7 @@ def write_reports(bench, docs, command, started):
     parts["references"] = "\n".join(refs)
     parts["convergence"] = convergence_tables(bench, conv)
     parts["first-frame"] = first_frame_table(bench, conv)
+    parts["compensation"] = compensation_table(bench, conv)
     parts["claims"] = claims_block(claims, not a.evidence)
     scene_parts = []
     for scene in bench.refs:
@@ -955,7 +1012,8 @@ def write_reports(bench, docs, command, started):
                      f"image mean {p['mean']:.4g} (0 = black: its area lights are not rendered).")
     parts["notes"] = "\n".join(f"- {n}" for n in notes) if notes else "- none"
     with open(os.path.join(docs, "results.md"), "w", encoding="utf-8") as f:
-        for key in ("machine", "claims", "references", "convergence", "first-frame", "results", "notes"):
+        for key in ("machine", "claims", "references", "convergence", "first-frame", "compensation", "results",
+                    "notes"):
             f.write(f"## {key}\n\n{parts[key]}\n\n")
     with open(os.path.join(docs, "summary.json"), "w", encoding="utf-8") as f:
         json.dump({"machine_start": started, "machine_end": end, "command": command, "quick": a.quick,

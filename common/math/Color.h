@@ -3,12 +3,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/ext/vector_double3.hpp>
 #include <glm/vec3.hpp>
 
 namespace igi {
 
 inline float luminance(glm::vec3 c) {
     return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
+/// In double, for sums of many frames.
+inline double luminance(const glm::dvec3& c) {
+    return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
 }
 inline float maxComponent(glm::vec3 c) {
     return std::max(c.x, std::max(c.y, c.z));

@@ -7,11 +7,13 @@
 
 namespace igi {
 
-void Accumulator::reset(int width, int height, bool withdrawBlur) {
+void Accumulator::reset(int width, int height, bool withdrawBlur, int noiseX, int noiseY) {
     width_ = width;
     height_ = height;
     frames_ = 0;
     withdrawBlur_ = withdrawBlur;
+    noiseX_ = std::max(1, noiseX);
+    noiseY_ = std::max(1, noiseY);
     const std::size_t pixels = std::size_t(width) * height;
     sum_.assign(pixels * 3, 0.0);
     sumUnfiltered_.assign(withdrawBlur ? pixels * 3 : 0, 0.0);
@@ -54,6 +56,27 @@ double Accumulator::blurTolerance(int frames) {
     return t * t;
 }
 
+double Accumulator::ownVariance(std::size_t p) const {
+    const double inv = 1.0 / frames_;
+    const double d = luminance(glm::dvec3(sum_[3 * p], sum_[3 * p + 1], sum_[3 * p + 2]) * inv) -
+                     luminance(glm::dvec3(sumUnfiltered_[3 * p], sumUnfiltered_[3 * p + 1],
+                                          sumUnfiltered_[3 * p + 2]) *
+                               inv);
+    // The frames' sample variance over their count.
+    return std::max(0.0, sumDifference2_[p] * inv - d * d) / (frames_ - 1.0);
+}
+
+double Accumulator::windowVariance(int x, int y) const {
+    // Centred and shifted inside the image like the discontinuity buffer's window.
+    const int x0 = std::clamp(x - (noiseX_ - 1) / 2, 0, std::max(0, width_ - noiseX_));
+    const int y0 = std::clamp(y - (noiseY_ - 1) / 2, 0, std::max(0, height_ - noiseY_));
+    const int x1 = std::min(width_, x0 + noiseX_), y1 = std::min(height_, y0 + noiseY_);
+    double sum = 0.0;
+    for (int qy = y0; qy < y1; ++qy)
+        for (int qx = x0; qx < x1; ++qx) sum += ownVariance(std::size_t(qy) * width_ + qx);
+    return sum / double((x1 - x0) * (y1 - y0));
+}
+
 void Accumulator::meanRows(std::vector<glm::vec3>& out, int rowBegin, int rowEnd) const {
     const double n = frames_;
     const double tolerance = blurTolerance(frames_);
@@ -66,10 +89,12 @@ void Accumulator::meanRows(std::vector<glm::vec3>& out, int rowBegin, int rowEnd
         }
         const glm::dvec3 unfiltered(sumUnfiltered_[3 * p] * inv, sumUnfiltered_[3 * p + 1] * inv,
                                     sumUnfiltered_[3 * p + 2] * inv);
-        const double d = (0.2126 * filtered.x + 0.7152 * filtered.y + 0.0722 * filtered.z) -
-                         (0.2126 * unfiltered.x + 0.7152 * unfiltered.y + 0.0722 * unfiltered.z);
-        // The variance of the mean difference: the frames' sample variance over their count.
-        const double variance = std::max(0.0, sumDifference2_[p] * inv - d * d) / (n - 1.0);
+        const double d = luminance(filtered) - luminance(unfiltered);
+        double variance = ownVariance(p);
+        if (noiseX_ * noiseY_ > 1) {
+            const int x = int(p % std::size_t(width_)), y = int(p / std::size_t(width_));
+            variance = std::max(variance, windowVariance(x, y));
+        }
         const double allowed = tolerance * variance;
         const double w = d * d <= allowed ? 1.0 : allowed / (d * d);
         out[p] = glm::vec3(w * filtered + (1.0 - w) * unfiltered);

@@ -24,6 +24,14 @@ namespace igi {
 /// so where the blur has a bias b the weight falls like 1 / (b^2 frames) and the mean converges to
 /// the unfiltered, unbiased one; where it has none, D stays within its noise and the filtered mean
 /// (with about a ninth of the variance) stays.
+///
+/// s^2 is pooled over a window (the discontinuity buffer's, so that it holds every interleaving
+/// cell): the larger of the pixel's own estimate and the window's mean. IGI's noise is heavy-tailed
+/// (a VPL close to a glossy surface is a rare, large term), and a pixel whose light sets have not
+/// drawn such a term yet has a small sample variance: judged alone, its lower unfiltered mean
+/// looks significant and the blur is withdrawn there, which leaves dark dots in the lattice of
+/// the interleaving cells (all pixels of a cell share a set). Its neighbours' spikes show the
+/// noise it is subject to.
 class Accumulator {
   public:
     /// A bias is believed when the difference exceeds what a two-sided t-test at 95 % allows:
@@ -33,7 +41,8 @@ class Accumulator {
     /// from half the image on noise alone).
     static double blurTolerance(int frames);
 
-    void reset(int width, int height, bool withdrawBlur = false);
+    /// `noiseX` x `noiseY`: the window over which s^2 is pooled (1 x 1: the pixel alone).
+    void reset(int width, int height, bool withdrawBlur = false, int noiseX = 1, int noiseY = 1);
     /// Adds rows [rowBegin, rowEnd) of a frame; call endFrame() once all rows are in.
     void addRows(const std::vector<glm::vec3>& frame, int rowBegin, int rowEnd);
     /// The same with the frame's unfiltered image too (withdrawBlur).
@@ -46,10 +55,17 @@ class Accumulator {
     bool withdrawsBlur() const { return withdrawBlur_; }
 
   private:
+    /// The variance of pixel p's mean difference, from its frames alone.
+    double ownVariance(std::size_t p) const;
+    /// The mean of ownVariance over pixel (x, y)'s window.
+    double windowVariance(int x, int y) const;
+
     int width_ = 0;
     int height_ = 0;
     int frames_ = 0;
     bool withdrawBlur_ = false;
+    int noiseX_ = 1;
+    int noiseY_ = 1;
     std::vector<double> sum_;             ///< 3 per pixel: the (filtered) frames
     std::vector<double> sumUnfiltered_;   ///< 3 per pixel, with withdrawBlur
     std::vector<double> sumDifference2_;  ///< 1 per pixel: sum of (lum filtered - lum unfiltered)^2

@@ -93,9 +93,33 @@ TEST(Accumulator, BlurToleranceIsStudentsTFallingToTwoSigma) {
     EXPECT_NEAR(Accumulator::blurTolerance(11), 2.228 * 2.228, 1e-6);
     for (int n = 2; n < 1000; ++n)
         EXPECT_LT(Accumulator::blurTolerance(n + 1), Accumulator::blurTolerance(n)) << n;
-    EXPECT_NEAR(Accumulator::blurTolerance(31), 2.042 * 2.042, 0.01);  // table's last entry
+    EXPECT_NEAR(Accumulator::blurTolerance(31), 2.042 * 2.042, 0.01);     // table's last entry
     EXPECT_NEAR(Accumulator::blurTolerance(32), 2.0395 * 2.0395, 0.002);  // the expansion's first
     EXPECT_NEAR(Accumulator::blurTolerance(100000), 1.96 * 1.96, 0.01);
+}
+
+// Heavy-tailed noise: four pixels of one window share a filtered mean of 1; three of them have
+// drawn rare large terms (unfiltered 0 or 4), the fourth has not (unfiltered 0.8, steady). Judged
+// alone, the fourth pixel's difference looks significant and its blur is withdrawn (a dark
+// dot); with the variance pooled over the window, its neighbours' noise keeps the filter.
+TEST(Accumulator, PooledNoiseKeepsTheBlurWhereOnlyNeighboursDrewSpikes) {
+    auto run = [](int noiseX) {
+        Accumulator a;
+        a.reset(4, 1, /*withdrawBlur=*/true, noiseX, 1);
+        for (int i = 0; i < 32; ++i) {
+            const float spike = i % 4 == 0 ? 4.0f : 0.0f;
+            const std::vector<glm::vec3> filtered(4, glm::vec3(1.0f));
+            const std::vector<glm::vec3> unfiltered{glm::vec3(0.8f), glm::vec3(spike),
+                                                    glm::vec3(spike), glm::vec3(spike)};
+            a.addRows(filtered, unfiltered, 0, 1);
+            a.endFrame();
+        }
+        std::vector<glm::vec3> mean(4);
+        a.meanRows(mean, 0, 1);
+        return mean[0].x;
+    };
+    EXPECT_LT(run(1), 0.85f) << "alone, the steady pixel's blur is withdrawn";
+    EXPECT_FLOAT_EQ(run(4), 1.0f) << "pooled, its neighbours' spikes show the noise";
 }
 
 }  // namespace
