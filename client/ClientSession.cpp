@@ -187,8 +187,10 @@ void ClientSession::onSceneData(const proto::Header& header, proto::SceneData da
             auto geometry = std::make_unique<SceneGeometry>(device_, *scene);
             SceneState state = SceneState::of(*scene);
             applyChanges(state, data.changes);  // the master's state when this client joined
+            // A client joining mid-animation starts its photon stream here (PhotonStream::first).
             auto version = std::make_shared<SceneVersion>(epoch, *geometry, std::move(state),
-                                                          scene->render, scene->image);
+                                                          scene->render, scene->image,
+                                                          LightingContext{scene.get(), 0, nullptr});
             const float seconds =
                 std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
             spdlog::info(
@@ -238,9 +240,12 @@ void ClientSession::onSceneUpdate(std::uint32_t epoch, std::vector<SceneChange> 
     } catch (const std::exception& e) {
         return refuse(std::string("a bad scene update: ") + e.what());
     }
-    // Cheap: a top-level commit and the lights; the meshes are shared.
-    versions_[epoch] = std::make_shared<SceneVersion>(epoch, *geometry_, std::move(state),
-                                                      scene_->render, scene_->image);
+    // Cheap: a top-level commit and the lights (and a batch of photons when streaming); the
+    // meshes are shared. Every update reaches every client, so each continues the same history.
+    const auto& previous = versions_.at(latestEpoch_)->renderer.method();
+    versions_[epoch] = std::make_shared<SceneVersion>(
+        epoch, *geometry_, std::move(state), scene_->render, scene_->image,
+        LightingContext{scene_.get(), epoch, previous.history()});
     latestEpoch_ = epoch;
     // Tiles of old epochs keep their version alive; the map keeps only recent ones.
     while (versions_.size() > kKeptVersions) versions_.erase(versions_.begin());

@@ -21,7 +21,7 @@ std::shared_ptr<const LightingSet> LightingCache::get(std::uint32_t frame,
     if (built) {
         try {
             promise.set_value(
-                std::make_shared<const LightingSet>(builder_.build(frame, accumulation, setIndex)));
+                std::make_shared<const LightingSet>(method_.build(frame, accumulation, setIndex)));
         } catch (...) {
             promise.set_exception(std::current_exception());
         }

@@ -7,8 +7,8 @@
 #include <mutex>
 #include <utility>
 
+#include "LightingMethod.h"
 #include "LightingSet.h"
-#include "LightingSetBuilder.h"
 
 namespace igi {
 
@@ -17,7 +17,7 @@ namespace igi {
 /// it. The master's k-affine scheduling keeps the number of sets per frame small.
 class LightingCache {
   public:
-    explicit LightingCache(const LightingSetBuilder& builder) : builder_(builder) {}
+    explicit LightingCache(const LightingMethod& method) : method_(method) {}
 
     /// The set of (frame, setIndex); `built` tells whether this call built it. `accumulation`
     /// is the frame's place in its accumulation, the same for every tile of the frame.
@@ -29,7 +29,7 @@ class LightingCache {
 
   private:
     using Key = std::pair<std::uint32_t, std::uint32_t>;
-    const LightingSetBuilder& builder_;
+    const LightingMethod& method_;
     std::mutex mutex_;
     std::map<Key, std::shared_future<std::shared_ptr<const LightingSet>>> sets_;
 };

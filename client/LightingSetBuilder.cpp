@@ -79,6 +79,15 @@ std::uint32_t LightingSetBuilder::survivors(std::uint32_t d) const {
 
 LightingSet LightingSetBuilder::build(std::uint32_t frame, std::uint32_t accumulation,
                                       std::uint32_t setIndex) const {
+    return assemble(frame, accumulation, setIndex, true);
+}
+
+LightingSet LightingSetBuilder::buildDirect(std::uint32_t frame, std::uint32_t setIndex) const {
+    return assemble(frame, 0, setIndex, false);
+}
+
+LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accumulation,
+                                         std::uint32_t setIndex, bool lightPaths) const {
     LightingSet set;
     // The first frame after a change is what a user sees while moving: it stays the paper's
     // estimator, as fast and as clean (the roulette's long paths are few and heavy, the
@@ -104,7 +113,7 @@ LightingSet LightingSetBuilder::build(std::uint32_t frame, std::uint32_t accumul
     const double radiusShrink = settings_.progressiveRadius ? shrink : 1.0;
     if (lights_.empty()) return set;
     sampleDirect(frame, setIndex, set);
-    walkLightPaths(frame, setIndex, set);
+    if (lightPaths) walkLightPaths(frame, setIndex, set);
     std::uint32_t shot = 0;
     auto photons = caustics_.shoot(frame, setIndex, shot, set.buildRays);
     std::vector<CausticPhoton> indirectPhotons;
@@ -152,10 +161,19 @@ void LightingSetBuilder::walkLightPaths(std::uint32_t frame, std::uint32_t setIn
     set.indirectLight = true;
     const LightPathSampler sampler(settings_.seed, frame, SampleStream::VplPaths, setIndex,
                                    vplPaths_, std::uint32_t(maxLength));
-    const float invPaths = 1.0f / float(vplPaths_);
     set.lightPaths = vplPaths_;
+    traceLightPaths(sampler, PathEnd::KellerWalk, roulette, set.buildRays,
+                    [&set](const Vpl& v) { set.indirect.push_back(v); });
+}
+
+void LightingSetBuilder::traceLightPaths(const LightPathSampler& sampler, PathEnd end,
+                                         bool roulette, RayCounters& rays,
+                                         const std::function<void(const Vpl&)>& deposit) const {
+    const std::uint32_t paths = sampler.pathsPerSet();
+    const int maxLength = maxLightPathLength(roulette);
+    const float invPaths = 1.0f / float(paths);
     SurfacePoint hit;
-    for (std::uint32_t j = 0; j < vplPaths_; ++j) {
+    for (std::uint32_t j = 0; j < paths; ++j) {
         const LightSample light = lights_.sample(sampler.emission(j, 0),
                                                  {sampler.emission(j, 1), sampler.emission(j, 2)});
         if (!(light.pdf > 0)) continue;
@@ -172,15 +190,14 @@ void LightingSetBuilder::walkLightPaths(std::uint32_t frame, std::uint32_t setIn
             beta = light.emitted * kPi / light.pdf;
         }
         std::uint32_t nonDeltaBounces = 0;
-        bool russianRoulette = false;  // past the paper's walk
+        bool russianRoulette = end == PathEnd::Roulette;  // past the paper's walk
         for (int vertex = 1; vertex < maxLength; ++vertex) {
             if (!scene_.intersect(origin, direction, std::numeric_limits<float>::infinity(), hit,
-                                  set.buildRays))
+                                  rays))
                 break;
             const Lobes lobes = lobesAt(hit, -direction);
             // No VPL on mirrors or glass: what they reflect is the caustic photons' job.
-            if (lobes.hasNonDelta())
-                set.indirect.push_back(vplAt(scene_, hit, lobes, beta * invPaths));
+            if (lobes.hasNonDelta()) deposit(vplAt(scene_, hit, lobes, beta * invPaths));
             if (vertex + 1 >= maxLength) break;
             Lobe lobe;
             float probability = 0;

@@ -1,12 +1,14 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "CausticShooter.h"
 #include "LightingSet.h"
 #include "Lights.h"
 #include "TraceableScene.h"
 #include "render/RenderSettings.h"
+#include "sampling/LightPathSampler.h"
 
 namespace igi {
 
@@ -47,7 +49,24 @@ class LightingSetBuilder {
     /// "After the run"); the first frame keeps the paper's bound.
     static constexpr float kAccumulatedClampScale = 2.0f;
 
+    /// How light paths end: Keller's quasi-random walk (the paper's, a fixed share of the
+    /// lowest path indices going on at each diffuse bounce, then Russian roulette if `roulette`),
+    /// or Russian roulette from the first bounce (photon tracing as in Jensen's photon maps).
+    enum class PathEnd { KellerWalk, Roulette };
+    /// Traces the light paths of `sampler`, calling `deposit` with the VPL each non-delta vertex
+    /// makes (carrying its share of the light's power: the paths' flux / their count). The walk
+    /// ends at the paper's length, or with `roulette` at the safety cap.
+    void traceLightPaths(const LightPathSampler& sampler, PathEnd end, bool roulette,
+                         RayCounters& rays, const std::function<void(const Vpl&)>& deposit) const;
+    /// The set of k as build() makes it, but without VPLs from light paths: the light samples
+    /// and the caustic photons of the frame's first image, for methods whose indirect light
+    /// comes from elsewhere.
+    LightingSet buildDirect(std::uint32_t frame, std::uint32_t setIndex) const;
+    const RenderSettings& settings() const { return settings_; }
+
   private:
+    LightingSet assemble(std::uint32_t frame, std::uint32_t accumulation, std::uint32_t setIndex,
+                         bool lightPaths) const;
     void sampleDirect(std::uint32_t frame, std::uint32_t setIndex, LightingSet& set) const;
     void walkLightPaths(std::uint32_t frame, std::uint32_t setIndex, LightingSet& set) const;
 

@@ -5,10 +5,28 @@
 #include <future>
 #include <mutex>
 
+#include "IgiLighting.h"
+#include "StreamLighting.h"
+
 namespace igi {
 namespace {
 
 constexpr int kChunkPixels = 64;  // small enough to balance load, large enough to amortize
+
+std::unique_ptr<LightingMethod> makeLightingMethod(const LightingSetBuilder& builder,
+                                                   const TraceableScene& scene,
+                                                   const SceneState& state,
+                                                   const RenderSettings& settings,
+                                                   const LightingContext& context) {
+    if (settings.integrator == IntegratorKind::Path) return std::make_unique<IgiLighting>(builder);
+    switch (settings.gi) {
+        case GiMode::Stream:
+            return std::make_unique<StreamLighting>(builder, scene, state, settings, context);
+        case GiMode::Igi:
+            break;
+    }
+    return std::make_unique<IgiLighting>(builder);
+}
 
 }  // namespace
 
@@ -25,14 +43,16 @@ struct TileRenderer::TileJob {
 };
 
 TileRenderer::TileRenderer(const TraceableScene& scene, const SceneState& state,
-                           const RenderSettings& settings, const ImageSettings& image)
+                           const RenderSettings& settings, const ImageSettings& image,
+                           const LightingContext& context)
     : scene_(scene),
       settings_(settings),
       image_(image),
       camera_(state.camera, image.width, image.height),
       lights_(scene, state.pointLights),
       builder_(scene, lights_, settings),
-      cache_(builder_),
+      method_(makeLightingMethod(builder_, scene, state, settings, context)),
+      cache_(*method_),
       igi_(scene, lights_, settings, camera_),
       path_(scene, lights_, settings, camera_) {}
 

@@ -7,6 +7,7 @@
 #include "CameraModel.h"
 #include "IgiIntegrator.h"
 #include "LightingCache.h"
+#include "LightingMethod.h"
 #include "LightingSetBuilder.h"
 #include "Lights.h"
 #include "Messages.h"
@@ -22,9 +23,12 @@ namespace igi {
 /// P_k / C_k of a tile comes from the cache (built by the first chunk that needs it).
 class TileRenderer {
   public:
-    /// Renders `scene`, a version whose camera and point lights `state` gives.
+    /// Renders `scene`, a version whose camera and point lights `state` gives, lit by the
+    /// method settings.gi names; `context` carries what a method that keeps lighting across
+    /// epochs needs (the loaded scene and the previous epoch's history).
     TileRenderer(const TraceableScene& scene, const SceneState& state,
-                 const RenderSettings& settings, const ImageSettings& image);
+                 const RenderSettings& settings, const ImageSettings& image,
+                 const LightingContext& context = {});
 
     using Done = std::function<void(proto::TileResult&&)>;
 
@@ -39,6 +43,7 @@ class TileRenderer {
 
     LightingCache& cache() { return cache_; }
     const LightingSetBuilder& builder() const { return builder_; }
+    const LightingMethod& method() const { return *method_; }
     const Lights& lights() const { return lights_; }
 
   private:
@@ -51,6 +56,7 @@ class TileRenderer {
     CameraModel camera_;
     Lights lights_;
     LightingSetBuilder builder_;
+    std::unique_ptr<LightingMethod> method_;
     LightingCache cache_;
     IgiIntegrator igi_;
     PathIntegrator path_;

@@ -201,6 +201,11 @@ void Master::onHello(Session& s, const proto::Hello& hello) {
     s.connection->send(proto::Welcome{s.id, scene_.render.seed, proof}, 0, 0);
     // The scene as loaded, plus the changes that bring it to now; then every update that follows.
     sceneData_.changes = timeline_->changesSinceLoad();
+    if (scene_.render.gi == GiMode::Stream && timeline_->epoch() > 0)
+        spdlog::warn(
+            "client {} joins at epoch {}: its photon stream starts there, so for the next {} "
+            "epochs its tiles are lit by a pool the other clients do not hold (docs/MODES.md)",
+            s.id, timeline_->epoch(), scene_.render.streamWindow - 1);
     s.connection->send(sceneData_, 0, timeline_->epoch());
     s.sceneSent = true;
 }

@@ -89,6 +89,11 @@ int main(int argc, char** argv) {
     int spp = 0;
     auto* integratorOpt = app.add_option("--integrator", integrator, "igi, or path (the reference)")
                               ->check(CLI::IsMember({"igi", "path"}));
+    std::string gi;
+    auto* giOpt = app.add_option("--gi", gi,
+                                 "GI mode: igi (fresh light paths every frame), or stream (photon "
+                                 "streaming onto surface lights); docs/MODES.md")
+                      ->check(CLI::IsMember({"igi", "stream"}));
     auto* sppOpt = app.add_option("--spp", spp, "path tracer samples per pixel per frame");
     auto* interleaveOpt = app.add_option("--interleave", interleave, "interleaving pattern NxM");
     auto* filterOpt = app.add_option("--filter", filter, "discontinuity buffer size NxM");
@@ -146,6 +151,11 @@ int main(int argc, char** argv) {
          "their gathering radius, fraction of the scene diagonal"},
         {"--progressive-alpha", "progressive_alpha", false,
          "how fast the caustic radius (and a shrinking clamp) shrinks, in (0, 1)"},
+        {"--stream-vsls", "stream_vsls", true, "--gi stream: surface lights on the geometry"},
+        {"--stream-photons", "stream_photons", true,
+         "--gi stream: light paths shot into the pool per scene epoch"},
+        {"--stream-window", "stream_window", true,
+         "--gi stream: epochs whose photons the pool holds"},
         {"--tile-size", "tile_size", true, "tile edge in pixels of one k"},
         {"--seed", "seed", true, "session seed of every random bit vector"},
     };
@@ -178,6 +188,7 @@ int main(int argc, char** argv) {
     o.exposureSet = exposure->count() > 0;
     try {
         if (integratorOpt->count()) render["integrator"] = integrator;
+        if (giOpt->count()) render["gi"] = gi;
         if (sppOpt->count()) render["path_samples"] = spp;
         if (interleaveOpt->count()) render["interleave"] = parsePair(interleave, "--interleave");
         if (filterOpt->count()) render["filter"] = parsePair(filter, "--filter");

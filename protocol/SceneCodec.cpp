@@ -8,7 +8,7 @@ namespace {
 
 // A new field in one of these structs must be added to the codec and to docs/PROTOCOL.md, or
 // it silently never reaches the clients. These sizes make the compiler say so (x86-64 / LP64).
-static_assert(sizeof(RenderSettings) == 112, "RenderSettings changed: update SceneCodec.cpp");
+static_assert(sizeof(RenderSettings) == 128, "RenderSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(ImageSettings) == 12, "ImageSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(Camera) == 40, "Camera changed: update SceneCodec.cpp");
 static_assert(sizeof(SceneBundle) == 2 * sizeof(std::string) + sizeof(SceneBundle::files),
@@ -80,6 +80,10 @@ void writeRenderSettings(ByteWriter& out, const RenderSettings& s) {
     out.boolean(s.progressiveRadius);
     out.boolean(s.progressiveFilter);
     out.f32(s.progressiveAlpha);
+    out.u8(static_cast<std::uint8_t>(s.gi));
+    out.i32(s.streamVsls);
+    out.i32(s.streamPhotons);
+    out.i32(s.streamWindow);
 }
 
 RenderSettings readRenderSettings(ByteReader& in) {
@@ -119,6 +123,13 @@ RenderSettings readRenderSettings(ByteReader& in) {
     s.progressiveRadius = in.boolean();
     s.progressiveFilter = in.boolean();
     s.progressiveAlpha = readFloat(in, "progressiveAlpha", 1e-3f, 0.999f);
+    const std::uint8_t gi = in.u8();
+    if (gi > static_cast<std::uint8_t>(GiMode::Stream))
+        in.fail("unknown GI mode " + std::to_string(gi));
+    s.gi = static_cast<GiMode>(gi);
+    s.streamVsls = readInt(in, "streamVsls", 1, kMaxStreamVsls);
+    s.streamPhotons = readInt(in, "streamPhotons", 1, 16 * kMi);
+    s.streamWindow = readInt(in, "streamWindow", 1, kMaxStreamWindow);
     return s;
 }
 

@@ -116,6 +116,10 @@ inline SceneData sampleSceneData() {
     m.settings.progressiveRadius = false;
     m.settings.progressiveFilter = false;
     m.settings.progressiveAlpha = 0.5f;
+    m.settings.gi = GiMode::Stream;
+    m.settings.streamVsls = 77;
+    m.settings.streamPhotons = 999;
+    m.settings.streamWindow = 5;
     m.image = {800, 600, -1.5f};
     m.camera.position = {1.0f, 2.0f, 3.0f};
     m.camera.lookAt = {-1.0f, 0.5f, 0.25f};

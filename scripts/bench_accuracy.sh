@@ -18,6 +18,8 @@
 #   --baseline-build DIR
 #                     a previous build (DIR/bin/igi-master, e.g. /work/base/build): its first frame
 #                     and accumulation curve at the same settings, and the ratios new / old
+#   --ref DIR         where the cached references are (default out/reference/): e.g. those of
+#                     another worktree, which saves their hours of path tracing
 # IGI_BUILD=/path/to/build uses that build (its bin/) instead of setting up and building build/.
 # A full run with --peers and --baseline-build renders 6 scenes for 60 s each several times over,
 # plus the 4096-spp references the first time: expect one to two hours on 2 shared cores.

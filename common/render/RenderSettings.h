@@ -10,6 +10,21 @@ enum class IntegratorKind : std::uint8_t {
     Path,  ///< brute-force path tracing, the reference
 };
 
+/// The most epochs a photon stream's pool may span: a client keeps that many epochs' photons.
+constexpr int kMaxStreamWindow = 64;
+/// The most surface lights of photon streaming: their placement and each photon's deposit
+/// search every one of them.
+constexpr int kMaxStreamVsls = 16384;
+
+/// How a client builds and keeps the lighting of a frame: the family of GI methods that share
+/// the cluster (client/LightingMethod.h). Accumulated frames of a still view converge the same
+/// way in every mode; the modes differ in what the first frame after a change shows.
+enum class GiMode : std::uint8_t {
+    Igi,     ///< fresh light paths every frame (the paper's instant global illumination)
+    Stream,  ///< photon streaming (Meneveaux and Bridault 2008): a pool of recent photons
+             ///< deposited on virtual surface-element lights that move with their objects
+};
+
 /// What restores the energy that bounding the VPL connections removes.
 enum class ClampCompensation : std::uint8_t {
     Off,           ///< nothing: the bound's energy is lost (the paper's estimator)
@@ -23,6 +38,7 @@ enum class ClampCompensation : std::uint8_t {
 /// shadow rays per pixel, 500 caustic photons, light paths of length 4.
 struct RenderSettings {
     IntegratorKind integrator = IntegratorKind::Igi;
+    GiMode gi = GiMode::Igi;
 
     // Interleaved sampling: n x m sets P_k and C_k, k = 1 .. n*m.
     int interleaveX = 3;
@@ -84,6 +100,11 @@ struct RenderSettings {
     /// alpha of that schedule, in (0, 1); the shrinking clamp distance
     /// (ClampCompensation::Shrink) follows the same schedule.
     float progressiveAlpha = 2.0f / 3.0f;
+
+    // Photon streaming (GiMode::Stream).
+    int streamVsls = 256;      ///< virtual surface-element lights placed on the geometry
+    int streamPhotons = 4096;  ///< light paths shot per scene epoch into the pool
+    int streamWindow = 8;      ///< epochs whose photons the pool holds (its size / streamPhotons)
 
     // Reference path tracer.
     int pathSamples = 16;    ///< samples per pixel per frame

@@ -15,6 +15,7 @@ enum class SampleStream : std::uint32_t {
     EyePath = 4,
     PathTracer = 5,
     IndirectCausticPhotons = 6,  ///< photons shot from VPLs at mirrors and glass
+    PhotonStream = 7,            ///< photon streaming's batches (keyed by batch, not frame)
 };
 
 /// The random bit vector for one dimension of one stream in one frame. Every client derives the

@@ -26,6 +26,11 @@ void readIntegrator(const JsonNode& section, RenderSettings& s) {
         s.integrator =
             v->choice({"igi", "path"}) == "igi" ? IntegratorKind::Igi : IntegratorKind::Path;
     }
+    if (auto v = section.find("gi"))
+        s.gi = v->choice({"igi", "stream"}) == "igi" ? GiMode::Igi : GiMode::Stream;
+    readInt(section, "stream_vsls", 1, kMaxStreamVsls, s.streamVsls);
+    readInt(section, "stream_photons", 1, 1 << 24, s.streamPhotons);
+    readInt(section, "stream_window", 1, kMaxStreamWindow, s.streamWindow);
 }
 
 // Interleaving, direct light, VPLs and their clamp.
@@ -105,6 +110,10 @@ void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& setting
                              const std::string& file, const std::string& jsonPathPrefix) {
     const JsonNode section(json, file, jsonPathPrefix);
     section.checkKeys({"integrator",
+                       "gi",
+                       "stream_vsls",
+                       "stream_photons",
+                       "stream_window",
                        "interleave",
                        "direct_samples",
                        "vpl_paths",

@@ -117,8 +117,11 @@ TEST(SharedScenes, GlossyCornellBoxesLackTheLightMaterial) {
     }
     // With the Original's light set by a scene file, the box is lit by it.
     const Scene lit = loadSceneFile(test::testdataDir() / "cornell-glossy.json", test::trusted());
-    for (const Material& m : lit.materials)
-        if (m.name == "light") EXPECT_EQ(m.emission, glm::vec3(17, 12, 4));
+    for (const Material& m : lit.materials) {
+        if (m.name == "light") {
+            EXPECT_EQ(m.emission, glm::vec3(17, 12, 4));
+        }
+    }
     EXPECT_TRUE(lit.pointLights.empty());
 }
 

@@ -1,0 +1,64 @@
+#include "StreamLighting.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "math/Color.h"
+
+namespace igi {
+
+StreamLighting::StreamLighting(const LightingSetBuilder& builder, const TraceableScene& scene,
+                               const SceneState& state, const RenderSettings& settings,
+                               const LightingContext& context)
+    : builder_(builder), scene_(scene), setCount_(std::max(1, settings.setCount())) {
+    if (!context.scene) throw std::invalid_argument("photon streaming needs the loaded scene");
+    auto previous = std::dynamic_pointer_cast<const PhotonStream>(context.previous);
+    auto sites = previous ? previous->sharedSites()
+                          : std::make_shared<const std::vector<SurfaceLightSite>>(
+                                // Placed in the scene as loaded: the same on every client,
+                                // whenever it joined.
+                                placeSurfaceLights(*context.scene, SceneState::of(*context.scene),
+                                                   settings.streamVsls, settings.seed));
+    lights_ = surfaceLightsIn(*context.scene, state, *sites);
+    const auto shoot = [&](std::uint32_t index) {
+        return shootPhotonBatch(builder_, lights_, settings.seed, index,
+                                std::uint32_t(settings.streamPhotons), shootRays_);
+    };
+    if (previous)
+        stream_ = previous->next(
+            context.epoch, settings.streamWindow,
+            std::make_shared<const PhotonBatch>(shoot(PhotonStream::batchIndex(context.epoch))));
+    else
+        stream_ = PhotonStream::first(sites, context.epoch, settings.streamWindow, shoot);
+
+    // The VSLs as VPLs: one per lit side, at the VSL's place in this epoch.
+    std::vector<glm::vec3> front, back;
+    stream_->power(front, back);
+    const float share = float(setCount_);
+    for (std::size_t i = 0; i < lights_.size(); ++i) {
+        for (int side = 0; side < 2; ++side) {
+            const glm::vec3 power = side == 0 ? front[i] : back[i];
+            if (isBlack(power)) continue;
+            const glm::vec3 n = side == 0 ? lights_[i].normal : -lights_[i].normal;
+            Vpl v;
+            v.position = scene_.offsetOrigin(lights_[i].position, n);
+            v.normal = n;
+            v.power = power * share;
+            vpls_.push_back(v);
+            vplSet_.push_back(std::uint32_t(i % std::size_t(setCount_)));
+        }
+    }
+}
+
+LightingSet StreamLighting::build(std::uint32_t frame, std::uint32_t accumulation,
+                                  std::uint32_t setIndex) const {
+    if (accumulation > 0) return builder_.build(frame, accumulation, setIndex);
+    LightingSet set = builder_.buildDirect(frame, setIndex);
+    set.indirectLight = !vpls_.empty();
+    for (std::size_t i = 0; i < vpls_.size(); ++i)
+        if (vplSet_[i] == setIndex) set.indirect.push_back(vpls_[i]);
+    set.lightPaths = stream_->paths();
+    return set;
+}
+
+}  // namespace igi
