@@ -172,7 +172,7 @@ class InProcessRenderer {
         const int w = scene_.image.width, h = scene_.image.height;
         const auto tiles = makeTiles(w, h, s.interleaveX, s.interleaveY, s.tileSize);
         Accumulator accumulator;
-        accumulator.reset(w, h, s.progressiveFilter);
+        accumulator.reset(w, h, s.progressiveFilter, s.effectiveFilterX(), s.effectiveFilterY());
         FrameBuffer frame;
         std::vector<glm::vec3> filtered(std::size_t(w) * h), unfiltered(filtered.size());
         for (int f = 0; f < frames; ++f) {
