@@ -140,8 +140,8 @@ int main(int argc, char** argv) {
         const double raw1 = occluded1(traceable.embreeScene(), segs, pool, blocked);
         const double raw8 = occluded8(traceable.embreeScene(), segs, pool);
 
-        igi::TileRenderer renderer(traceable, igi::SceneState::of(scene), scene.render,
-                                   scene.image);
+        igi::TileRenderer renderer(traceable, igi::SceneState::of(scene), scene.render, scene.image,
+                                   igi::LightingContext{&scene, 0, nullptr});
         const auto& s = scene.render;
         const auto tiles = igi::makeTiles(scene.image.width, scene.image.height, s.interleaveX,
                                           s.interleaveY, s.tileSize);
