@@ -10,7 +10,7 @@ namespace igi {
 StreamLighting::StreamLighting(const LightingSetBuilder& builder, const TraceableScene& scene,
                                const SceneState& state, const RenderSettings& settings,
                                const LightingContext& context)
-    : builder_(builder), scene_(scene), setCount_(std::max(1, settings.setCount())) {
+    : builder_(builder), scene_(scene), setVpls_(std::size_t(std::max(1, settings.setCount()))) {
     if (!context.scene) throw std::invalid_argument("photon streaming needs the loaded scene");
     auto previous = std::dynamic_pointer_cast<const PhotonStream>(context.previous);
     auto sites = previous ? previous->sharedSites()
@@ -34,7 +34,7 @@ StreamLighting::StreamLighting(const LightingSetBuilder& builder, const Traceabl
     // The VSLs as VPLs: one per lit side, at the VSL's place in this epoch.
     std::vector<glm::vec3> front, back;
     stream_->power(front, back);
-    const float share = float(setCount_);
+    const float share = float(setVpls_.size());
     for (std::size_t i = 0; i < lights_.size(); ++i) {
         for (int side = 0; side < 2; ++side) {
             const glm::vec3 power = side == 0 ? front[i] : back[i];
@@ -44,8 +44,7 @@ StreamLighting::StreamLighting(const LightingSetBuilder& builder, const Traceabl
             v.position = scene_.offsetOrigin(lights_[i].position, n);
             v.normal = n;
             v.power = power * share;
-            vpls_.push_back(v);
-            vplSet_.push_back(std::uint32_t(i % std::size_t(setCount_)));
+            setVpls_[i % setVpls_.size()].push_back(v);
         }
     }
 }
@@ -54,9 +53,8 @@ LightingSet StreamLighting::build(std::uint32_t frame, std::uint32_t accumulatio
                                   std::uint32_t setIndex) const {
     if (accumulation > 0) return builder_.build(frame, accumulation, setIndex);
     LightingSet set = builder_.buildDirect(frame, setIndex);
-    set.indirectLight = !vpls_.empty();
-    for (std::size_t i = 0; i < vpls_.size(); ++i)
-        if (vplSet_[i] == setIndex) set.indirect.push_back(vpls_[i]);
+    set.indirect = setVpls_.at(setIndex);
+    set.indirectLight = !set.indirect.empty();
     set.lightPaths = stream_->paths();
     return set;
 }

@@ -39,11 +39,9 @@ class StreamLighting final : public LightingMethod {
   private:
     const LightingSetBuilder& builder_;
     const TraceableScene& scene_;
-    int setCount_ = 1;
     std::vector<SurfaceLight> lights_;
     std::shared_ptr<const PhotonStream> stream_;
-    std::vector<Vpl> vpls_;  ///< the VSLs as lights, for all sets: set k takes i % K == k
-    std::vector<std::uint32_t> vplSet_;
+    std::vector<std::vector<Vpl>> setVpls_;  ///< the VSLs as lights; set k has VSLs i % K == k
     RayCounters shootRays_;
 };
 

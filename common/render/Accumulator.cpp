@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "math/Color.h"
+#include "render/DiscontinuityFilter.h"
 
 namespace igi {
 
@@ -18,6 +19,7 @@ void Accumulator::reset(int width, int height, bool withdrawBlur, int noiseX, in
     sum_.assign(pixels * 3, 0.0);
     sumUnfiltered_.assign(withdrawBlur ? pixels * 3 : 0, 0.0);
     sumDifference2_.assign(withdrawBlur ? pixels : 0, 0.0);
+    variance_.assign(withdrawBlur ? pixels : 0, 0.0);
 }
 
 void Accumulator::addRows(const std::vector<glm::vec3>& frame, int rowBegin, int rowEnd) {
@@ -38,6 +40,9 @@ void Accumulator::addRows(const std::vector<glm::vec3>& filtered,
         sumUnfiltered_[3 * p + 2] += unfiltered[p].z;
         const double d = double(luminance(filtered[p])) - double(luminance(unfiltered[p]));
         sumDifference2_[p] += d * d;
+        // Once per pixel and frame, here where the rows are split among threads: the pooled
+        // estimate of meanRows reads each pixel's up to noiseX x noiseY times.
+        variance_[p] = ownVariance(p, frames_ + 1);
     }
 }
 
@@ -56,24 +61,25 @@ double Accumulator::blurTolerance(int frames) {
     return t * t;
 }
 
-double Accumulator::ownVariance(std::size_t p) const {
-    const double inv = 1.0 / frames_;
+double Accumulator::ownVariance(std::size_t p, int frames) const {
+    if (frames < 2) return 0.0;
+    const double inv = 1.0 / frames;
     const double d = luminance(glm::dvec3(sum_[3 * p], sum_[3 * p + 1], sum_[3 * p + 2]) * inv) -
                      luminance(glm::dvec3(sumUnfiltered_[3 * p], sumUnfiltered_[3 * p + 1],
                                           sumUnfiltered_[3 * p + 2]) *
                                inv);
     // The frames' sample variance over their count.
-    return std::max(0.0, sumDifference2_[p] * inv - d * d) / (frames_ - 1.0);
+    return std::max(0.0, sumDifference2_[p] * inv - d * d) / (frames - 1.0);
 }
 
 double Accumulator::windowVariance(int x, int y) const {
-    // Centred and shifted inside the image like the discontinuity buffer's window.
-    const int x0 = std::clamp(x - (noiseX_ - 1) / 2, 0, std::max(0, width_ - noiseX_));
-    const int y0 = std::clamp(y - (noiseY_ - 1) / 2, 0, std::max(0, height_ - noiseY_));
+    // The discontinuity buffer's window: every interleaving cell, also at the borders.
+    const int x0 = filterWindowStart(x, noiseX_, width_),
+              y0 = filterWindowStart(y, noiseY_, height_);
     const int x1 = std::min(width_, x0 + noiseX_), y1 = std::min(height_, y0 + noiseY_);
     double sum = 0.0;
     for (int qy = y0; qy < y1; ++qy)
-        for (int qx = x0; qx < x1; ++qx) sum += ownVariance(std::size_t(qy) * width_ + qx);
+        for (int qx = x0; qx < x1; ++qx) sum += variance_[std::size_t(qy) * width_ + qx];
     return sum / double((x1 - x0) * (y1 - y0));
 }
 
@@ -90,7 +96,7 @@ void Accumulator::meanRows(std::vector<glm::vec3>& out, int rowBegin, int rowEnd
         const glm::dvec3 unfiltered(sumUnfiltered_[3 * p] * inv, sumUnfiltered_[3 * p + 1] * inv,
                                     sumUnfiltered_[3 * p + 2] * inv);
         const double d = luminance(filtered) - luminance(unfiltered);
-        double variance = ownVariance(p);
+        double variance = variance_[p];
         if (noiseX_ * noiseY_ > 1) {
             const int x = int(p % std::size_t(width_)), y = int(p / std::size_t(width_));
             variance = std::max(variance, windowVariance(x, y));

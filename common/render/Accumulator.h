@@ -55,9 +55,9 @@ class Accumulator {
     bool withdrawsBlur() const { return withdrawBlur_; }
 
   private:
-    /// The variance of pixel p's mean difference, from its frames alone.
-    double ownVariance(std::size_t p) const;
-    /// The mean of ownVariance over pixel (x, y)'s window.
+    /// The variance of pixel p's mean difference over `frames` frames, from them alone.
+    double ownVariance(std::size_t p, int frames) const;
+    /// The mean of variance_ over pixel (x, y)'s window.
     double windowVariance(int x, int y) const;
 
     int width_ = 0;
@@ -69,6 +69,7 @@ class Accumulator {
     std::vector<double> sum_;             ///< 3 per pixel: the (filtered) frames
     std::vector<double> sumUnfiltered_;   ///< 3 per pixel, with withdrawBlur
     std::vector<double> sumDifference2_;  ///< 1 per pixel: sum of (lum filtered - lum unfiltered)^2
+    std::vector<double> variance_;        ///< 1 per pixel: ownVariance after the last frame
 };
 
 }  // namespace igi

@@ -7,22 +7,16 @@
 
 namespace igi {
 
-namespace {
-
-// First row or column of a window of `size` around `centre`: centred (leaning left or up for
-// even sizes), then shifted to lie inside [0, extent). A shifted window still covers `size`
-// consecutive columns, hence every interleaving cell, which a truncated one would not.
-int windowStart(int centre, int size, int extent) {
+int filterWindowStart(int centre, int size, int extent) {
     const int start = centre - (size - 1) / 2;
     return std::clamp(start, 0, std::max(0, extent - size));
 }
 
-}  // namespace
-
 void discontinuityFilterRows(const FrameBuffer& f, const DiscontinuityFilterSettings& s,
                              int rowBegin, int rowEnd, std::vector<glm::vec3>& out) {
     for (int y = rowBegin; y < rowEnd; ++y) {
-        const int y0 = windowStart(y, s.sizeY, f.height), y1 = std::min(f.height, y0 + s.sizeY);
+        const int y0 = filterWindowStart(y, s.sizeY, f.height),
+                  y1 = std::min(f.height, y0 + s.sizeY);
         for (int x = 0; x < f.width; ++x) {
             const std::size_t p = std::size_t(y) * f.width + x;
             const float d = f.depth[p];
@@ -30,7 +24,8 @@ void discontinuityFilterRows(const FrameBuffer& f, const DiscontinuityFilterSett
                 out[p] = f.unfiltered[p];
                 continue;
             }
-            const int x0 = windowStart(x, s.sizeX, f.width), x1 = std::min(f.width, x0 + s.sizeX);
+            const int x0 = filterWindowStart(x, s.sizeX, f.width),
+                      x1 = std::min(f.width, x0 + s.sizeX);
             const glm::vec3 n = f.normal[p];
             const float tolerance = s.depthThreshold * d;
             glm::vec3 sum(0.0f), glossySum(0.0f);

@@ -24,6 +24,11 @@ struct DiscontinuityFilterSettings {
     float normalThreshold = 0.9f;
 };
 
+/// First row or column of a window of `size` around `centre`: centred (leaning left or up for
+/// even sizes), then shifted to lie inside [0, extent). A shifted window still covers `size`
+/// consecutive columns, hence every interleaving cell, which a truncated one would not.
+int filterWindowStart(int centre, int size, int extent);
+
 /// Filters rows [rowBegin, rowEnd) of `frame` into `out` (width * height entries). At the
 /// image's borders the window is shifted inward rather than cut, so that it still covers every
 /// interleaving cell.
