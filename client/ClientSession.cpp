@@ -149,7 +149,7 @@ void ClientSession::onMessage(const proto::Header& header, proto::Message messag
     if (auto* data = std::get_if<proto::SceneData>(&message))
         return onSceneData(header, std::move(*data));
     if (auto* update = std::get_if<proto::SceneUpdate>(&message))
-        return onSceneUpdate(header.epoch, std::move(update->changes));
+        return onSceneUpdate(header.epoch, header.frame, std::move(update->changes));
     if (auto* tile = std::get_if<proto::TileAssign>(&message)) return onTile(header, *tile);
     if (std::holds_alternative<proto::Shutdown>(message)) {
         spdlog::info("the master ended the session");
@@ -185,12 +185,12 @@ void ClientSession::onSceneData(const proto::Header& header, proto::SceneData da
             scene->image = data.image;
             scene->camera = data.camera;
             auto geometry = std::make_unique<SceneGeometry>(device_, *scene);
-            SceneState state = SceneState::of(*scene);
-            applyChanges(state, data.changes);  // the master's state when this client joined
-            // A client joining mid-animation starts its photon stream here (PhotonStream::first).
-            auto version = std::make_shared<SceneVersion>(epoch, *geometry, std::move(state),
-                                                          scene->render, scene->image,
-                                                          LightingContext{scene.get(), 0, nullptr});
+            if (data.history.size() > epoch)
+                throw std::runtime_error(std::to_string(data.history.size()) +
+                                         " epochs of history before epoch " +
+                                         std::to_string(epoch));
+            auto versions = replayHistory(*scene, *geometry, data, epoch);
+            const auto& version = versions.back();
             const float seconds =
                 std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
             spdlog::info(
@@ -200,8 +200,8 @@ void ClientSession::onSceneData(const proto::Header& header, proto::SceneData da
                 version->renderer.builder().vplPaths(), scene->render.directSamples,
                 version->renderer.builder().causticsActive() ? ", caustics on" : "");
             boost::asio::post(io_, [this, scene = std::move(scene), geometry = std::move(geometry),
-                                    version, seconds]() mutable {
-                onSceneLoaded(std::move(scene), std::move(geometry), std::move(version), seconds);
+                                    versions = std::move(versions), seconds]() mutable {
+                onSceneLoaded(std::move(scene), std::move(geometry), std::move(versions), seconds);
             });
         } catch (const std::exception& e) {
             spdlog::error("cannot build the scene: {}", e.what());
@@ -212,26 +212,53 @@ void ClientSession::onSceneData(const proto::Header& header, proto::SceneData da
     });
 }
 
+std::vector<std::shared_ptr<SceneVersion>> ClientSession::replayHistory(
+    const Scene& scene, const SceneGeometry& geometry, const proto::SceneData& data,
+    std::uint32_t epoch) {
+    // The base epoch's state, then each epoch after it in turn, as the other clients built
+    // them from their SceneUpdates: a GI mode that keeps lighting across epochs ends up with
+    // the lighting they hold (docs/MODES.md). Without history this is the current epoch alone.
+    SceneState state = SceneState::of(scene);
+    applyChanges(state, data.changes);
+    std::uint32_t e = epoch - std::uint32_t(data.history.size());
+    std::vector<std::shared_ptr<SceneVersion>> versions;
+    versions.push_back(
+        std::make_shared<SceneVersion>(e, geometry, state, scene.render, scene.image,
+                                       LightingContext{&scene, e, data.baseFirstFrame, nullptr}));
+    for (const proto::EpochChanges& next : data.history) {
+        applyChanges(state, next.changes);
+        ++e;
+        auto previous = versions.back()->renderer.method().history(next.firstFrame);
+        versions.push_back(std::make_shared<SceneVersion>(
+            e, geometry, state, scene.render, scene.image,
+            LightingContext{&scene, e, next.firstFrame, std::move(previous)}));
+        if (versions.size() > kKeptVersions) versions.erase(versions.begin());
+    }
+    return versions;
+}
+
 void ClientSession::onSceneLoaded(std::unique_ptr<Scene> scene,
                                   std::unique_ptr<SceneGeometry> geometry,
-                                  std::shared_ptr<SceneVersion> version, float seconds) {
+                                  std::vector<std::shared_ptr<SceneVersion>> versions,
+                                  float seconds) {
     scene_ = std::move(scene);
     geometry_ = std::move(geometry);
-    versions_[version->epoch] = version;
-    const std::uint64_t triangles = version->traceable.triangleCount();
+    for (const auto& v : versions) versions_[v->epoch] = v;
+    const std::uint64_t triangles = versions.back()->traceable.triangleCount();
     ready_ = true;
-    for (auto& [epoch, changes] : std::exchange(pendingUpdates_, {}))
-        onSceneUpdate(epoch, std::move(changes));
+    for (auto& u : std::exchange(pendingUpdates_, {}))
+        onSceneUpdate(u.epoch, u.firstFrame, std::move(u.changes));
     connection_->send(proto::SceneReady{triangles, seconds}, 0, 0);
 }
 
-void ClientSession::onSceneUpdate(std::uint32_t epoch, std::vector<SceneChange> changes) {
+void ClientSession::onSceneUpdate(std::uint32_t epoch, std::uint32_t firstFrame,
+                                  std::vector<SceneChange> changes) {
     if (!sceneRequested_) return refuse("a scene update before the scene");
     if (epoch != latestEpoch_ + 1 && ready_)
         return refuse("scene update to epoch " + std::to_string(epoch) + " after epoch " +
                       std::to_string(latestEpoch_));
     if (!ready_) {  // still loading: apply in order once loaded
-        pendingUpdates_.emplace_back(epoch, std::move(changes));
+        pendingUpdates_.push_back({epoch, firstFrame, std::move(changes)});
         return;
     }
     SceneState state = versions_.at(latestEpoch_)->state;
@@ -245,7 +272,7 @@ void ClientSession::onSceneUpdate(std::uint32_t epoch, std::vector<SceneChange> 
     const auto& previous = versions_.at(latestEpoch_)->renderer.method();
     versions_[epoch] = std::make_shared<SceneVersion>(
         epoch, *geometry_, std::move(state), scene_->render, scene_->image,
-        LightingContext{scene_.get(), epoch, previous.history()});
+        LightingContext{scene_.get(), epoch, firstFrame, previous.history(firstFrame)});
     latestEpoch_ = epoch;
     // Tiles of old epochs keep their version alive; the map keeps only recent ones.
     while (versions_.size() > kKeptVersions) versions_.erase(versions_.begin());

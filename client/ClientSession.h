@@ -68,8 +68,16 @@ class ClientSession {
     void refuse(const std::string& reason);
     void onSceneData(const proto::Header& header, proto::SceneData data);
     void onSceneLoaded(std::unique_ptr<Scene> scene, std::unique_ptr<SceneGeometry> geometry,
-                       std::shared_ptr<SceneVersion> version, float seconds);
-    void onSceneUpdate(std::uint32_t epoch, std::vector<SceneChange> changes);
+                       std::vector<std::shared_ptr<SceneVersion>> versions, float seconds);
+    /// The versions of a joining client (the newest kKeptVersions): the SceneData's base epoch
+    /// and every epoch of its history, each continuing the lighting of the one before.
+    static std::vector<std::shared_ptr<SceneVersion>> replayHistory(const Scene& scene,
+                                                                    const SceneGeometry& geometry,
+                                                                    const proto::SceneData& data,
+                                                                    std::uint32_t epoch);
+    /// `firstFrame`: the frame the epoch begins at (the update's header frame).
+    void onSceneUpdate(std::uint32_t epoch, std::uint32_t firstFrame,
+                       std::vector<SceneChange> changes);
     void onTile(const proto::Header& header, const proto::TileAssign& assign);
     void replayTile(const std::shared_ptr<SceneVersion>& version, std::uint32_t frame,
                     std::uint32_t epoch, std::uint32_t tileId, const Tile& tile);
@@ -94,7 +102,11 @@ class ClientSession {
     std::map<std::uint32_t, std::shared_ptr<SceneVersion>> versions_;
     std::uint32_t latestEpoch_ = 0;
     /// Updates that arrived while the scene was still loading, applied once it is.
-    std::vector<std::pair<std::uint32_t, std::vector<SceneChange>>> pendingUpdates_;
+    struct PendingUpdate {
+        std::uint32_t epoch, firstFrame;
+        std::vector<SceneChange> changes;
+    };
+    std::vector<PendingUpdate> pendingUpdates_;
     bool sceneRequested_ = false;  ///< SceneData arrived (io thread)
     bool ready_ = false;           ///< the scene is loaded (io thread)
     std::uint32_t newestFrame_ = 0;

@@ -33,14 +33,21 @@ class LightingMethod {
     virtual LightingSet build(std::uint32_t frame, std::uint32_t accumulation,
                               std::uint32_t setIndex) const = 0;
 
-    /// The state the next epoch's method starts from (null for methods without one).
-    virtual std::shared_ptr<const LightingHistory> history() const { return nullptr; }
+    /// The state the next epoch's method starts from, that epoch beginning at frame
+    /// `nextFirstFrame` (null for methods without one).
+    virtual std::shared_ptr<const LightingHistory> history(std::uint32_t nextFirstFrame) const {
+        (void)nextFirstFrame;
+        return nullptr;
+    }
 };
 
 /// What making a method needs beyond one scene version.
 struct LightingContext {
     const Scene* scene = nullptr;  ///< the scene as loaded (meshes, for surface lights)
     std::uint32_t epoch = 0;
+    /// The epoch's first frame (the frame of its SceneUpdate): methods that go on working
+    /// while the scene holds still count their steps from it.
+    std::uint32_t firstFrame = 0;
     /// The previous epoch's history, or null for the first epoch this client has.
     std::shared_ptr<const LightingHistory> previous;
 };

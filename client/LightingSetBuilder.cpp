@@ -86,6 +86,15 @@ LightingSet LightingSetBuilder::buildDirect(std::uint32_t frame, std::uint32_t s
     return assemble(frame, 0, setIndex, false);
 }
 
+LightingSet LightingSetBuilder::buildWith(std::uint32_t frame, std::uint32_t setIndex,
+                                          std::vector<Vpl> indirect, std::uint32_t paths) const {
+    LightingSet set = buildDirect(frame, setIndex);
+    set.indirect = std::move(indirect);
+    set.indirectLight = !set.indirect.empty();
+    set.lightPaths = paths;
+    return set;
+}
+
 LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accumulation,
                                          std::uint32_t setIndex, bool lightPaths) const {
     LightingSet set;
@@ -166,9 +175,10 @@ void LightingSetBuilder::walkLightPaths(std::uint32_t frame, std::uint32_t setIn
                     [&set](const Vpl& v) { set.indirect.push_back(v); });
 }
 
-void LightingSetBuilder::traceLightPaths(const LightPathSampler& sampler, PathEnd end,
+void LightingSetBuilder::traceLightPaths(const LightPathNumbers& sampler, PathEnd end,
                                          bool roulette, RayCounters& rays,
-                                         const std::function<void(const Vpl&)>& deposit) const {
+                                         const std::function<void(const Vpl&)>& deposit,
+                                         const Visit& visit) const {
     const std::uint32_t paths = sampler.pathsPerSet();
     const int maxLength = maxLightPathLength(roulette);
     const float invPaths = 1.0f / float(paths);
@@ -195,6 +205,7 @@ void LightingSetBuilder::traceLightPaths(const LightPathSampler& sampler, PathEn
             if (!scene_.intersect(origin, direction, std::numeric_limits<float>::infinity(), hit,
                                   rays))
                 break;
+            if (visit) visit(j, hit);
             const Lobes lobes = lobesAt(hit, -direction);
             // No VPL on mirrors or glass: what they reflect is the caustic photons' job.
             if (lobes.hasNonDelta()) deposit(vplAt(scene_, hit, lobes, beta * invPaths));

@@ -8,7 +8,7 @@
 #include "Lights.h"
 #include "TraceableScene.h"
 #include "render/RenderSettings.h"
-#include "sampling/LightPathSampler.h"
+#include "sampling/LightPathNumbers.h"
 
 namespace igi {
 
@@ -55,13 +55,20 @@ class LightingSetBuilder {
     enum class PathEnd { KellerWalk, Roulette };
     /// Traces the light paths of `sampler`, calling `deposit` with the VPL each non-delta vertex
     /// makes (carrying its share of the light's power: the paths' flux / their count). The walk
-    /// ends at the paper's length, or with `roulette` at the safety cap.
-    void traceLightPaths(const LightPathSampler& sampler, PathEnd end, bool roulette,
-                         RayCounters& rays, const std::function<void(const Vpl&)>& deposit) const;
+    /// ends at the paper's length, or with `roulette` at the safety cap. `visit`, if given, sees
+    /// every surface a path hits (mirrors and glass included), before that vertex's deposit.
+    using Visit = std::function<void(std::uint32_t path, const SurfacePoint& hit)>;
+    void traceLightPaths(const LightPathNumbers& sampler, PathEnd end, bool roulette,
+                         RayCounters& rays, const std::function<void(const Vpl&)>& deposit,
+                         const Visit& visit = {}) const;
     /// The set of k as build() makes it, but without VPLs from light paths: the light samples
     /// and the caustic photons of the frame's first image, for methods whose indirect light
     /// comes from elsewhere.
     LightingSet buildDirect(std::uint32_t frame, std::uint32_t setIndex) const;
+    /// buildDirect's set with `indirect` as its VPLs (the `paths` light paths behind them): the
+    /// first frame of a method that keeps its indirect light across frames.
+    LightingSet buildWith(std::uint32_t frame, std::uint32_t setIndex, std::vector<Vpl> indirect,
+                          std::uint32_t paths) const;
     const RenderSettings& settings() const { return settings_; }
 
   private:

@@ -10,7 +10,10 @@ namespace igi {
 StreamLighting::StreamLighting(const LightingSetBuilder& builder, const TraceableScene& scene,
                                const SceneState& state, const RenderSettings& settings,
                                const LightingContext& context)
-    : builder_(builder), scene_(scene), setVpls_(std::size_t(std::max(1, settings.setCount()))) {
+    : builder_(builder),
+      scene_(scene),
+      firstFrame_(context.firstFrame),
+      setVpls_(std::size_t(std::max(1, settings.setCount()))) {
     if (!context.scene) throw std::invalid_argument("photon streaming needs the loaded scene");
     auto previous = std::dynamic_pointer_cast<const PhotonStream>(context.previous);
     auto sites = previous ? previous->sharedSites()
@@ -52,10 +55,9 @@ StreamLighting::StreamLighting(const LightingSetBuilder& builder, const Traceabl
 LightingSet StreamLighting::build(std::uint32_t frame, std::uint32_t accumulation,
                                   std::uint32_t setIndex) const {
     if (accumulation > 0) return builder_.build(frame, accumulation, setIndex);
-    LightingSet set = builder_.buildDirect(frame, setIndex);
-    set.indirect = setVpls_.at(setIndex);
-    set.indirectLight = !set.indirect.empty();
-    set.lightPaths = stream_->paths();
+    LightingSet set = builder_.buildWith(frame, setIndex, setVpls_.at(setIndex), stream_->paths());
+    // The epoch's batch (the whole pool for a first epoch), in its first frame's statistics.
+    if (frame == firstFrame_) set.buildRays += shootRays_.share(std::uint32_t(setVpls_.size()));
     return set;
 }
 

@@ -28,7 +28,7 @@ class StreamLighting final : public LightingMethod {
 
     LightingSet build(std::uint32_t frame, std::uint32_t accumulation,
                       std::uint32_t setIndex) const override;
-    std::shared_ptr<const LightingHistory> history() const override { return stream_; }
+    std::shared_ptr<const LightingHistory> history(std::uint32_t) const override { return stream_; }
 
     const PhotonStream& stream() const { return *stream_; }
     /// The VSLs as placed in this epoch's state.
@@ -39,6 +39,7 @@ class StreamLighting final : public LightingMethod {
   private:
     const LightingSetBuilder& builder_;
     const TraceableScene& scene_;
+    std::uint32_t firstFrame_;
     std::vector<SurfaceLight> lights_;
     std::shared_ptr<const PhotonStream> stream_;
     std::vector<std::vector<Vpl>> setVpls_;  ///< the VSLs as lights; set k has VSLs i % K == k

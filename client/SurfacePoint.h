@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include <glm/vec2.hpp>
@@ -31,6 +32,11 @@ struct RayCounters {
         rays += o.rays;
         shadowRays += o.shadowRays;
         return *this;
+    }
+    /// One of `parts` equal shares (work done once for all the interleaving sets of a frame,
+    /// counted with each set a client builds).
+    RayCounters share(std::uint32_t parts) const {
+        return {rays / std::max(1u, parts), shadowRays / std::max(1u, parts)};
     }
 };
 

@@ -162,7 +162,7 @@ class InProcessRenderer {
           geometry_(device_, scene_),
           traceable_(geometry_),
           renderer_(traceable_, SceneState::of(scene_), scene_.render, scene_.image,
-                    LightingContext{&scene_, 0, nullptr}),
+                    LightingContext{&scene_, 0, 0, nullptr}),
           pool_(threads) {}
 
     /// `firstAccumulation`: the first frame's place in the accumulation, as the master would

@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "IgiLighting.h"
+#include "SelectiveLighting.h"
 #include "StreamLighting.h"
 
 namespace igi {
@@ -22,6 +23,8 @@ std::unique_ptr<LightingMethod> makeLightingMethod(const LightingSetBuilder& bui
     switch (settings.gi) {
         case GiMode::Stream:
             return std::make_unique<StreamLighting>(builder, scene, state, settings, context);
+        case GiMode::Spt:
+            return std::make_unique<SelectiveLighting>(builder, state, settings, context);
         case GiMode::Igi:
             break;
     }

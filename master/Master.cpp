@@ -20,6 +20,23 @@ namespace igi {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/// The epochs of history a joining client replays to hold the lighting the others hold:
+/// photon streaming's pool spans the last stream_window epochs (the oldest of which a joiner
+/// fills whole, as every client filled epoch 0); selective photon tracing's depends on every
+/// epoch since the session began; IGI keeps nothing.
+std::uint32_t joinHistoryDepth(const RenderSettings& s) {
+    if (s.integrator == IntegratorKind::Path) return 0;
+    switch (s.gi) {
+        case GiMode::Stream:
+            return std::uint32_t(std::max(0, s.streamWindow - 1));
+        case GiMode::Spt:
+            return proto::kMaxHistoryEpochs;
+        case GiMode::Igi:
+            break;
+    }
+    return 0;
+}
 constexpr auto kTickPeriod = std::chrono::milliseconds(20);
 // A tile is copied to an idle client only after it has been out at least this long (and three
 // times its holder's usual latency, see TileScheduler): short enough to get past a stalled
@@ -68,7 +85,8 @@ void Master::loadScene() {
     std::unique_ptr<Animation> animation;
     if (!options_.animation.empty())
         animation = std::make_unique<Animation>(Animation::load(options_.animation, scene_));
-    timeline_ = std::make_unique<SceneTimeline>(SceneState::of(scene_), std::move(animation));
+    timeline_ = std::make_unique<SceneTimeline>(SceneState::of(scene_), std::move(animation),
+                                                joinHistoryDepth(scene_.render));
 
     const RenderSettings& s = scene_.render;
     auto layout = makeTiles(scene_.image.width, scene_.image.height, s.interleaveX, s.interleaveY,
@@ -199,13 +217,20 @@ void Master::onHello(Session& s, const proto::Hello& hello) {
     std::optional<proto::AuthBytes> proof;
     if (key_) proof = key_->masterProof(s.nonce, hello.nonce);
     s.connection->send(proto::Welcome{s.id, scene_.render.seed, proof}, 0, 0);
-    // The scene as loaded, plus the changes that bring it to now; then every update that follows.
-    sceneData_.changes = timeline_->changesSinceLoad();
-    if (scene_.render.gi == GiMode::Stream && timeline_->epoch() > 0)
+    // The scene as loaded, plus the changes that bring it to now (through the history a GI mode
+    // with lighting across epochs replays); then every update that follows.
+    SceneTimeline::Join join = timeline_->join();
+    sceneData_.changes = std::move(join.changes);
+    sceneData_.baseFirstFrame = join.baseFirstFrame;
+    sceneData_.history.clear();
+    for (auto& e : join.history) sceneData_.history.push_back({e.firstFrame, std::move(e.changes)});
+    if (scene_.render.gi == GiMode::Spt && !timeline_->historyComplete())
         spdlog::warn(
-            "client {} joins at epoch {}: its photon stream starts there, so for the next {} "
-            "epochs its tiles are lit by a pool the other clients do not hold (docs/MODES.md)",
-            s.id, timeline_->epoch(), scene_.render.streamWindow - 1);
+            "client {} joins at epoch {}, past the {} epochs of history a joiner replays: its "
+            "path groups start from epoch {}, so its tiles may be lit differently from the "
+            "other clients' (docs/MODES.md)",
+            s.id, timeline_->epoch(), proto::kMaxHistoryEpochs,
+            timeline_->epoch() - sceneData_.history.size());
     s.connection->send(sceneData_, 0, timeline_->epoch());
     s.sceneSent = true;
 }

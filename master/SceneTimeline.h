@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <vector>
@@ -16,7 +17,10 @@ namespace igi {
 /// of state makes a new epoch; a frame renders one epoch from its first tile to its last.
 class SceneTimeline {
   public:
-    SceneTimeline(SceneState loaded, std::unique_ptr<Animation> animation);
+    /// `historyDepth`: how many of the latest epochs' changes to keep for joining clients (GI
+    /// modes that keep lighting across epochs replay them, docs/MODES.md).
+    SceneTimeline(SceneState loaded, std::unique_ptr<Animation> animation,
+                  std::uint32_t historyDepth = 0);
 
     /// Changes from a control command; they show from the next frame that begins. Throws
     /// std::invalid_argument (and changes nothing) if an index is out of range.
@@ -40,13 +44,31 @@ class SceneTimeline {
     const SceneState& loaded() const { return loaded_; }
     /// The state control commands apply to: as loaded, plus every command so far.
     const SceneState& controlled() const { return controlled_; }
-    /// The changes that bring a freshly loaded scene to the current epoch (for a joining client).
-    std::vector<SceneChange> changesSinceLoad() const { return diffStates(loaded_, state_); }
+    /// One epoch after the base: the frame it began at and the changes that made it.
+    struct Epoch {
+        std::uint32_t firstFrame = 0;
+        std::vector<SceneChange> changes;
+    };
+    /// What a joining client needs: the changes that bring a freshly loaded scene to the base
+    /// epoch (the current one minus the history kept), the frame the base began at, and the
+    /// epochs since, at most historyDepth of them.
+    struct Join {
+        std::vector<SceneChange> changes;
+        std::uint32_t baseFirstFrame = 0;
+        std::vector<Epoch> history;
+    };
+    Join join() const;
+    /// Whether the history kept reaches back to the loaded scene (epoch 0).
+    bool historyComplete() const { return baseEpoch_ == 0; }
 
   private:
     SceneState loaded_;
     SceneState controlled_;  ///< loaded + every control change so far
     SceneState state_;       ///< the state of the current epoch
+    std::uint32_t historyDepth_;
+    SceneState base_;  ///< the state of the oldest epoch whose successors are kept
+    std::uint32_t baseEpoch_ = 0, baseFirstFrame_ = 0;
+    std::deque<Epoch> history_;  ///< the epochs after the base, oldest first
     std::unique_ptr<Animation> animation_;
     std::uint32_t epoch_ = 0;
     std::map<std::uint32_t, std::uint32_t> frameEpochs_;

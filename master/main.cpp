@@ -91,9 +91,11 @@ int main(int argc, char** argv) {
                               ->check(CLI::IsMember({"igi", "path"}));
     std::string gi;
     auto* giOpt = app.add_option("--gi", gi,
-                                 "GI mode: igi (fresh light paths every frame), or stream (photon "
-                                 "streaming onto surface lights); docs/MODES.md")
-                      ->check(CLI::IsMember({"igi", "stream"}));
+                                 "GI mode: igi (fresh light paths every frame), spt (selective "
+                                 "photon tracing: only the path groups a change touches traced "
+                                 "again) or stream (photon streaming onto surface lights); "
+                                 "docs/MODES.md")
+                      ->check(CLI::IsMember({"igi", "spt", "stream"}));
     auto* sppOpt = app.add_option("--spp", spp, "path tracer samples per pixel per frame");
     auto* interleaveOpt = app.add_option("--interleave", interleave, "interleaving pattern NxM");
     auto* filterOpt = app.add_option("--filter", filter, "discontinuity buffer size NxM");
@@ -156,6 +158,11 @@ int main(int argc, char** argv) {
          "--gi stream: light paths shot into the pool per scene epoch"},
         {"--stream-window", "stream_window", true,
          "--gi stream: epochs whose photons the pool holds"},
+        {"--spt-groups", "spt_groups", true, "--gi spt: light path groups"},
+        {"--spt-paths", "spt_paths", true, "--gi spt: light paths per group"},
+        {"--spt-pilots", "spt_pilots", true,
+         "--gi spt: pilot paths per group, traced on every change to detect it"},
+        {"--spt-budget", "spt_budget", true, "--gi spt: groups traced again per frame at most"},
         {"--tile-size", "tile_size", true, "tile edge in pixels of one k"},
         {"--seed", "seed", true, "session seed of every random bit vector"},
     };

@@ -24,6 +24,8 @@ struct SceneDataFields {
     ImageSettings image;
     Camera camera;
     std::vector<SceneChange> changes;
+    std::uint32_t baseFirstFrame;
+    std::vector<EpochChanges> history;
 };
 static_assert(sizeof(SceneData) == sizeof(SceneDataFields), "SceneData changed: update Codec.cpp");
 
@@ -81,6 +83,7 @@ void write(ByteWriter& out, const SceneData& m) {
     writeImageSettings(b, m.image);
     writeCamera(b, m.camera);
     writeSceneChanges(b, m.changes);
+    writeSceneHistory(b, m.baseFirstFrame, m.history);
     if (body.size() > kSceneDataBodyLimit)
         throw ProtocolError("SceneData of " + std::to_string(body.size()) + " bytes exceeds the " +
                             std::to_string(kSceneDataBodyLimit) + "-byte limit");
@@ -184,6 +187,7 @@ SceneData readSceneData(ByteReader& in) {
     m.image = readImageSettings(b);
     m.camera = readCamera(b);
     m.changes = readSceneChanges(b);
+    m.history = readSceneHistory(b, m.baseFirstFrame);
     b.expectEnd();
     return m;
 }

@@ -50,6 +50,8 @@ void expectSame(const SceneData& a, const SceneData& b) {
     EXPECT_TRUE(a.camera == b.camera);
     EXPECT_EQ(a.changes.size(), b.changes.size());
     EXPECT_TRUE(a.changes == b.changes);  // every field of every change (ChangeCodec_test)
+    EXPECT_EQ(a.baseFirstFrame, b.baseFirstFrame);
+    EXPECT_TRUE(a.history == b.history);
 }
 void expectSame(const SceneReady& a, const SceneReady& b) {
     EXPECT_EQ(a.triangles, b.triangles);
@@ -163,7 +165,7 @@ TEST(Codec, TypeOfMatchesTheTypeNumbers) {
 TEST(Codec, HeaderLayoutIsLittleEndianAsDocumented) {
     const auto bytes = encodeMessage(Heartbeat{}, 0x01020304, 0x0A0B0C0D);
     ASSERT_EQ(bytes.size(), kHeaderSize);
-    const std::uint8_t expected[kHeaderSize] = {'I',  'G',  'I',  'P',  3, 0, 7, 0, 4, 3, 2, 1,
+    const std::uint8_t expected[kHeaderSize] = {'I',  'G',  'I',  'P',  4, 0, 7, 0, 4, 3, 2, 1,
                                                 0x0D, 0x0C, 0x0B, 0x0A, 0, 0, 0, 0, 0, 0, 0, 0};
     EXPECT_EQ(0, std::memcmp(bytes.data(), expected, kHeaderSize));
 }
@@ -215,7 +217,7 @@ TEST(Codec, HeaderRejectsBadMagic) {
 TEST(Codec, HeaderRejectsOtherVersions) {
     auto h = goodHeader();
     h[4] = 1;
-    EXPECT_EQ(headerError(h), "protocol version 1, this build speaks 3");
+    EXPECT_EQ(headerError(h), "protocol version 1, this build speaks 4");
     h[4] = 0;
     EXPECT_NE(headerError(h).find("protocol version 0"), std::string::npos);
 }
@@ -364,6 +366,7 @@ std::vector<std::uint8_t> sceneDataBody(const SceneData& m) {
     writeImageSettings(out, m.image);
     writeCamera(out, m.camera);
     writeSceneChanges(out, m.changes);
+    writeSceneHistory(out, m.baseFirstFrame, m.history);
     return body;
 }
 
@@ -410,6 +413,27 @@ TEST(Codec, SceneDataRangesAreValidated) {
     m = test::sampleSceneData();
     std::get<MaterialChange>(m.changes.at(4)).value.ior = -1.0f;
     expectRefused(m, "SceneData body: change 4 (material): ior is -1");
+    m = test::sampleSceneData();
+    m.history[1].firstFrame = 18;  // epochs begin at increasing frames
+    expectRefused(m, "history epoch begins at frame 18, not after 18");
+    m = test::sampleSceneData();
+    std::get<MaterialChange>(m.history[0].changes.at(4)).value.ior = -1.0f;
+    expectRefused(m, "ior is -1");
+}
+
+TEST(Codec, SceneDataHistoryCountCannotExceedTheBytesOrTheLimit) {
+    for (const std::uint32_t count : {1000u, 0xFFFFFFFFu}) {
+        SceneData m = test::sampleSceneData();
+        m.history.clear();
+        auto body = sceneDataBody(m);
+        // The count is the last u32 of a body without history: claim `count` epochs.
+        for (int i = 0; i < 4; ++i)
+            body[body.size() - 4 + std::size_t(i)] = std::uint8_t(count >> (8 * i));
+        const std::string error = errorOf(MessageType::SceneData, sceneDataPayload(body));
+        EXPECT_TRUE(error.find("cannot fit") != std::string::npos ||
+                    error.find("exceed the limit") != std::string::npos)
+            << error;
+    }
 }
 
 TEST(Codec, SceneDataCarriesItsChangesAtTheEndOfTheBody) {

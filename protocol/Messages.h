@@ -24,7 +24,7 @@ namespace igi::proto {
 /// epoch can be recognised and dropped. The payload size is checked against the type's maximum
 /// before anything is allocated.
 constexpr std::uint32_t kMagic = 0x50494749u;  // bytes 'I' 'G' 'I' 'P'
-constexpr std::uint16_t kVersion = 3;
+constexpr std::uint16_t kVersion = 4;
 constexpr std::size_t kHeaderSize = 24;
 
 enum class MessageType : std::uint16_t {
@@ -81,14 +81,30 @@ struct Challenge {
 
 /// The scene as files (so a client parses the same bytes as the master) plus what the master's
 /// command line changed: the settings, image size and camera to render with.
+/// One epoch of a session's history: the changes that make it from the epoch before, and the
+/// frame it began at.
+struct EpochChanges {
+    std::uint32_t firstFrame = 0;
+    std::vector<SceneChange> changes;
+    bool operator==(const EpochChanges&) const = default;
+};
+
+/// The most epochs of history a SceneData carries.
+constexpr std::uint32_t kMaxHistoryEpochs = 65536;
+
 struct SceneData {
     SceneBundle bundle;
     RenderSettings settings;
     ImageSettings image;
     Camera camera;
-    /// Applied right after loading (and after `camera`), so that a client joining mid-session
-    /// starts in the master's current state: the state of the header's epoch.
+    /// Applied right after loading (and after `camera`): the state of the base epoch, the
+    /// header's epoch minus history.size(), which began at frame `baseFirstFrame`.
     std::vector<SceneChange> changes;
+    std::uint32_t baseFirstFrame = 0;
+    /// The epochs after the base, in order, up to the header's: what a GI mode that keeps
+    /// lighting across epochs replays to hold what the other clients hold (docs/MODES.md).
+    /// Empty for modes without such state: the client starts in the master's current state.
+    std::vector<EpochChanges> history;
 };
 
 struct SceneReady {

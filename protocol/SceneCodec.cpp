@@ -1,5 +1,7 @@
 #include "SceneCodec.h"
 
+#include "ChangeCodec.h"
+
 #include <cmath>
 #include <string>
 
@@ -8,7 +10,7 @@ namespace {
 
 // A new field in one of these structs must be added to the codec and to docs/PROTOCOL.md, or
 // it silently never reaches the clients. These sizes make the compiler say so (x86-64 / LP64).
-static_assert(sizeof(RenderSettings) == 128, "RenderSettings changed: update SceneCodec.cpp");
+static_assert(sizeof(RenderSettings) == 144, "RenderSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(ImageSettings) == 12, "ImageSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(Camera) == 40, "Camera changed: update SceneCodec.cpp");
 static_assert(sizeof(SceneBundle) == 2 * sizeof(std::string) + sizeof(SceneBundle::files),
@@ -84,6 +86,10 @@ void writeRenderSettings(ByteWriter& out, const RenderSettings& s) {
     out.i32(s.streamVsls);
     out.i32(s.streamPhotons);
     out.i32(s.streamWindow);
+    out.i32(s.sptGroups);
+    out.i32(s.sptPaths);
+    out.i32(s.sptPilots);
+    out.i32(s.sptBudget);
 }
 
 RenderSettings readRenderSettings(ByteReader& in) {
@@ -124,12 +130,16 @@ RenderSettings readRenderSettings(ByteReader& in) {
     s.progressiveFilter = in.boolean();
     s.progressiveAlpha = readFloat(in, "progressiveAlpha", 1e-3f, 0.999f);
     const std::uint8_t gi = in.u8();
-    if (gi > static_cast<std::uint8_t>(GiMode::Stream))
+    if (gi > static_cast<std::uint8_t>(GiMode::Spt))
         in.fail("unknown GI mode " + std::to_string(gi));
     s.gi = static_cast<GiMode>(gi);
     s.streamVsls = readInt(in, "streamVsls", 1, kMaxStreamVsls);
     s.streamPhotons = readInt(in, "streamPhotons", 1, 16 * kMi);
     s.streamWindow = readInt(in, "streamWindow", 1, kMaxStreamWindow);
+    s.sptGroups = readInt(in, "sptGroups", 1, kMaxSptGroups);
+    s.sptPaths = readInt(in, "sptPaths", 1, 1024);
+    s.sptPilots = readInt(in, "sptPilots", 1, s.sptPaths);
+    s.sptBudget = readInt(in, "sptBudget", 1, kMaxSptGroups);
     return s;
 }
 
@@ -145,6 +155,43 @@ ImageSettings readImageSettings(ByteReader& in) {
     s.height = readInt(in, "image height", 1, 65535);
     s.exposure = readFloat(in, "exposure", -100.0f, 100.0f);
     return s;
+}
+
+void writeSceneHistory(ByteWriter& out, std::uint32_t baseFirstFrame,
+                       const std::vector<EpochChanges>& history) {
+    if (history.size() > kMaxHistoryEpochs)
+        throw ProtocolError(std::to_string(history.size()) +
+                            " epochs of history exceed the limit of " +
+                            std::to_string(kMaxHistoryEpochs));
+    out.u32(baseFirstFrame);
+    out.u32(std::uint32_t(history.size()));
+    for (const EpochChanges& e : history) {
+        out.u32(e.firstFrame);
+        writeSceneChanges(out, e.changes);
+    }
+}
+
+std::vector<EpochChanges> readSceneHistory(ByteReader& in, std::uint32_t& baseFirstFrame) {
+    baseFirstFrame = in.u32();
+    const std::uint32_t count = in.u32();
+    if (count > kMaxHistoryEpochs)
+        in.fail(std::to_string(count) + " epochs of history exceed the limit of " +
+                std::to_string(kMaxHistoryEpochs));
+    // Each epoch takes at least its frame and its change count.
+    if (std::uint64_t(count) * 8 > in.remaining())
+        in.fail(std::to_string(count) + " epochs of history cannot fit in the " +
+                std::to_string(in.remaining()) + " bytes left");
+    std::vector<EpochChanges> history(count);
+    std::uint32_t previous = baseFirstFrame;
+    for (EpochChanges& e : history) {
+        e.firstFrame = in.u32();
+        if (e.firstFrame <= previous)
+            in.fail("history epoch begins at frame " + std::to_string(e.firstFrame) +
+                    ", not after " + std::to_string(previous));
+        previous = e.firstFrame;
+        e.changes = readSceneChanges(in);
+    }
+    return history;
 }
 
 void writeCamera(ByteWriter& out, const Camera& c) {

@@ -2,6 +2,7 @@
 
 #include "ByteReader.h"
 #include "ByteWriter.h"
+#include "Messages.h"
 #include "render/RenderSettings.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
@@ -20,6 +21,12 @@ ImageSettings readImageSettings(ByteReader& in);
 
 void writeCamera(ByteWriter& out, const Camera& c);
 Camera readCamera(ByteReader& in);
+
+/// SceneData's base frame and history: u32 baseFirstFrame, u32 count <= kMaxHistoryEpochs,
+/// then per epoch u32 firstFrame and its changes (ChangeCodec).
+void writeSceneHistory(ByteWriter& out, std::uint32_t baseFirstFrame,
+                       const std::vector<EpochChanges>& history);
+std::vector<EpochChanges> readSceneHistory(ByteReader& in, std::uint32_t& baseFirstFrame);
 
 void writeSceneBundle(ByteWriter& out, const SceneBundle& b);
 SceneBundle readSceneBundle(ByteReader& in);

@@ -120,12 +120,18 @@ inline SceneData sampleSceneData() {
     m.settings.streamVsls = 77;
     m.settings.streamPhotons = 999;
     m.settings.streamWindow = 5;
+    m.settings.sptGroups = 72;
+    m.settings.sptPaths = 7;
+    m.settings.sptPilots = 3;
+    m.settings.sptBudget = 11;
     m.image = {800, 600, -1.5f};
     m.camera.position = {1.0f, 2.0f, 3.0f};
     m.camera.lookAt = {-1.0f, 0.5f, 0.25f};
     m.camera.up = {0.0f, 0.0f, 1.0f};
     m.camera.fovYDeg = 38.5f;
     m.changes = sampleChanges();
+    m.baseFirstFrame = 17;
+    m.history = {{18, sampleChanges()}, {25, {}}};
     return m;
 }
 

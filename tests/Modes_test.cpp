@@ -2,6 +2,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <regex>
 
 #include <gtest/gtest.h>
 
@@ -19,12 +21,13 @@ fs::path dynamicData(const std::string& file) {
     return sourceDir() / "tests/data/dynamic" / file;
 }
 
-/// The dynamic test scene (a box moved every frame by `alternate.json`) in `mode`, `frames`
-/// frames without accumulation, written to `dir`/frame_NN.exr.
-void renderAnimation(const fs::path& dir, const std::string& mode, int clients, int frames) {
+/// The dynamic test scene (a box moved every frame by `alternate.json`, or by `animation`) in
+/// `mode`, `frames` frames without accumulation, written to `dir`/frame_NN.exr.
+void renderAnimation(const fs::path& dir, const std::string& mode, int clients, int frames,
+                     const std::string& animation = "alternate.json") {
     const ProcessResult r = runProcess(
         masterCommand({"--scene", dynamicData("scene.json").string(), "--animation",
-                       dynamicData("alternate.json").string(), "--gi", mode, "--frames",
+                       dynamicData(animation).string(), "--gi", mode, "--frames",
                        std::to_string(frames), "--local-clients", std::to_string(clients),
                        "--no-accumulate", "--output-sequence", (dir / "frame_%02d.exr").string()}),
         dir / "master.log");
@@ -43,39 +46,121 @@ double meanLuminance(const Image& image) {
     return sum / double(image.pixels.size());
 }
 
-// Every client keeps the same pool of photons whatever tiles it renders: each epoch's batch is
-// a function of the seed, the epoch and that epoch's scene only.
-TEST(Modes, StreamAnimationIsTheSameWithOneAndThreeClients) {
-    const fs::path one = scratchDir("stream-one"), three = scratchDir("stream-three");
-    renderAnimation(one, "stream", 1, 6);
-    renderAnimation(three, "stream", 3, 6);
-    for (int f = 0; f < 6; ++f) expectSameImage(frameFile(one, f), frameFile(three, f));
+// Every client keeps the same lighting whatever tiles it renders: photon streaming's batch of
+// each epoch is a function of the seed, the epoch and that epoch's scene only; selective photon
+// tracing's pool of each frame a function of the scene of every frame before.
+void expectSameAnimationWithOneAndThreeClients(const std::string& mode,
+                                               const std::string& animation = "alternate.json",
+                                               int frames = 6) {
+    const fs::path one = scratchDir(mode + "-one"), three = scratchDir(mode + "-three");
+    renderAnimation(one, mode, 1, frames, animation);
+    renderAnimation(three, mode, 3, frames, animation);
+    for (int f = 0; f < frames; ++f) expectSameImage(frameFile(one, f), frameFile(three, f));
     fs::remove_all(one);
     fs::remove_all(three);
 }
 
+TEST(Modes, StreamAnimationIsTheSameWithOneAndThreeClients) {
+    expectSameAnimationWithOneAndThreeClients("stream");
+}
+
+TEST(Modes, SptAnimationIsTheSameWithOneAndThreeClients) {
+    expectSameAnimationWithOneAndThreeClients("spt");
+    // A jump, then a still scene whose frames go on tracing the touched groups (within one
+    // epoch, counted from its first frame).
+    expectSameAnimationWithOneAndThreeClients("spt", "jump.json", 8);
+}
+
+// A client that joins mid-animation replays the epochs the master sends with its scene
+// (SceneData's history) and holds the lighting the first client holds: the session's frames
+// are bit for bit those of a session with that one client alone.
+void expectAJoinerHoldsTheSameLighting(const std::string& mode) {
+    const fs::path dir = scratchDir(mode + "-join");
+    const fs::path secret = dir / "secret", slide = dir / "slide.json";
+    std::ofstream(secret) << "the render cluster's shared secret\n";
+    // The box slides a little every frame: every frame is a new epoch.
+    std::ofstream(slide) << R"({"objects": {"mirror_box": [)"
+                         << R"({"frame": 0, "translate": [-0.38, 0, -0.3]},)"
+                         << R"({"frame": 5000, "translate": [0.3, 0, -0.3]}]}})";
+    const std::vector<std::string> mine = {"--animation",     slide.string(),    "--gi", mode,
+                                           "--no-accumulate", "--local-clients", "1"};
+    std::vector<std::string> extra = mine;
+    extra.insert(extra.end(), {"--secret-file", secret.string(), "--output-sequence",
+                               (dir / "join_%04d.exr").string()});
+    OpenSession session(dir, extra);
+    ASSERT_TRUE(session.started()) << readFile(session.log);
+    ASSERT_TRUE(session.waitFrames(3)) << readFile(session.log);
+    const pid_t joiner =
+        spawnProcess(clientCommand({"--connect", "127.0.0.1:" + session.port, "--threads", "1",
+                                    "--secret-file", secret.string()}),
+                     dir / "joiner.log");
+    ASSERT_GT(joiner, 0);
+    ASSERT_FALSE(
+        waitForLine(session.log, std::regex(R"(client 2 \(.*\) is ready)"), session.master).empty())
+        << readFile(session.log) << readFile(dir / "joiner.log");
+    ASSERT_TRUE(session.waitFrames(10)) << readFile(session.log);
+    const int frames = session.stop();
+    ASSERT_GT(frames, 0) << readFile(session.log);
+    EXPECT_EQ(waitProcess(joiner, 30), 0) << readFile(dir / "joiner.log");
+    std::ifstream statsFile(dir / "stats.json");
+    const auto stats = nlohmann::json::parse(statsFile);
+    ASSERT_EQ(stats["clients"].size(), 2u);
+    ASSERT_GT(stats["clients"][1]["tiles"].get<int>(), 0) << "the joiner never got a tile";
+    EXPECT_GT(stats["clients"][1]["first_frame"].get<std::int64_t>(), 3) << "it joined late";
+
+    auto args = sceneArgs(frames);
+    args.insert(args.end(), mine.begin(), mine.end());
+    args.insert(args.end(), {"--output-sequence", (dir / "alone_%04d.exr").string()});
+    const ProcessResult alone = runProcess(masterCommand(args), dir / "alone.log");
+    ASSERT_EQ(alone.exitCode, 0) << alone.output;
+    for (int f = 0; f < frames; ++f) {
+        char a[32], b[32];
+        std::snprintf(a, sizeof a, "join_%04d.exr", f);
+        std::snprintf(b, sizeof b, "alone_%04d.exr", f);
+        expectSameImage(dir / a, dir / b);
+    }
+    fs::remove_all(dir);
+}
+
+TEST(Modes, AStreamJoinerHoldsThePoolTheOthersHold) {
+    expectAJoinerHoldsTheSameLighting("stream");
+}
+
+TEST(Modes, AnSptJoinerHoldsThePoolTheOthersHold) {
+    expectAJoinerHoldsTheSameLighting("spt");
+}
+
 // The mode is what lights the frames after a change: not IGI's image, but the same light
-// within what clustering photons onto surface lights costs.
-TEST(Modes, StreamFirstFramesAreItsOwnAndAsBrightAsIgis) {
-    const fs::path igi = scratchDir("first-igi"), stream = scratchDir("first-stream");
+// within what the mode's approximation costs (clustering photons onto surface lights, or light
+// kept from before the change).
+void expectOwnFirstFramesAsBrightAsIgis(const std::string& mode) {
+    const fs::path igi = scratchDir(mode + "-first-igi"), own = scratchDir("first-" + mode);
     renderAnimation(igi, "igi", 1, 4);
-    renderAnimation(stream, "stream", 1, 4);
+    renderAnimation(own, mode, 1, 4);
     for (int f = 0; f < 4; ++f) {
-        const Image a = readFiniteImage(frameFile(igi, f)),
-                    b = readFiniteImage(frameFile(stream, f));
+        const Image a = readFiniteImage(frameFile(igi, f)), b = readFiniteImage(frameFile(own, f));
         ASSERT_EQ(a.pixels.size(), b.pixels.size());
-        EXPECT_TRUE(a.pixels != b.pixels) << "frame " << f << ": --gi stream rendered IGI's image";
+        EXPECT_TRUE(a.pixels != b.pixels)
+            << "frame " << f << ": --gi " << mode << " rendered IGI's image";
         const double ma = meanLuminance(a), mb = meanLuminance(b);
         EXPECT_NEAR(mb / ma, 1.0, 0.05) << "frame " << f;
     }
     fs::remove_all(igi);
-    fs::remove_all(stream);
+    fs::remove_all(own);
+}
+
+TEST(Modes, StreamFirstFramesAreItsOwnAndAsBrightAsIgis) {
+    expectOwnFirstFramesAsBrightAsIgis("stream");
+}
+
+TEST(Modes, SptFirstFramesAreItsOwnAndAsBrightAsIgis) {
+    expectOwnFirstFramesAsBrightAsIgis("spt");
 }
 
 // A still view converges in every mode to the rendering equation's answer: the accumulated
-// frames are the converging estimator, the stream's first frame weighs 1 / frames.
-TEST(Modes, StreamStillSceneConvergesToThePathTracersMean) {
-    const fs::path dir = scratchDir("stream-still");
+// frames are the converging estimator, the mode's first frame weighs 1 / frames.
+TEST(Modes, StillSceneConvergesToThePathTracersMeanInEveryMode) {
+    const fs::path dir = scratchDir("modes-still");
     const std::vector<std::string> scene = {
         "--scene",         (sourceDir() / "scenes/cornell/cornell.json").string(),
         "--width",         "64",
@@ -91,8 +176,10 @@ TEST(Modes, StreamStillSceneConvergesToThePathTracersMean) {
     };
     const Image reference =
         render({"--integrator", "path", "--spp", "64", "--frames", "8"}, "path.exr");
-    const Image stream = render({"--gi", "stream", "--frames", "128"}, "stream.exr");
-    EXPECT_NEAR(meanLuminance(stream) / meanLuminance(reference), 1.0, 0.02);
+    for (const std::string mode : {"igi", "spt", "stream"}) {
+        const Image image = render({"--gi", mode, "--frames", "128"}, mode + ".exr");
+        EXPECT_NEAR(meanLuminance(image) / meanLuminance(reference), 1.0, 0.02) << mode;
+    }
     fs::remove_all(dir);
 }
 

@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
         const double raw8 = occluded8(traceable.embreeScene(), segs, pool);
 
         igi::TileRenderer renderer(traceable, igi::SceneState::of(scene), scene.render, scene.image,
-                                   igi::LightingContext{&scene, 0, nullptr});
+                                   igi::LightingContext{&scene, 0, 0, nullptr});
         const auto& s = scene.render;
         const auto tiles = igi::makeTiles(scene.image.width, scene.image.height, s.interleaveX,
                                           s.interleaveY, s.tileSize);

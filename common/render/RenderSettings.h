@@ -23,7 +23,12 @@ enum class GiMode : std::uint8_t {
     Igi,     ///< fresh light paths every frame (the paper's instant global illumination)
     Stream,  ///< photon streaming (Meneveaux and Bridault 2008): a pool of recent photons
              ///< deposited on virtual surface-element lights that move with their objects
+    Spt,     ///< selective photon tracing (Dmitriev et al. 2002): a pool of light paths in
+             ///< groups, only the groups a change touches traced again
 };
+
+/// The most path groups of selective photon tracing: every scene change checks each one.
+constexpr int kMaxSptGroups = 65536;
 
 /// What restores the energy that bounding the VPL connections removes.
 enum class ClampCompensation : std::uint8_t {
@@ -105,6 +110,12 @@ struct RenderSettings {
     int streamVsls = 256;      ///< virtual surface-element lights placed on the geometry
     int streamPhotons = 4096;  ///< light paths shot per scene epoch into the pool
     int streamWindow = 8;      ///< epochs whose photons the pool holds (its size / streamPhotons)
+
+    // Selective photon tracing (GiMode::Spt). The pool is sptGroups x sptPaths light paths.
+    int sptGroups = 36;  ///< path groups G (2^a 3^b ...: the Halton periodicity groups them)
+    int sptPaths = 3;    ///< light paths per group (36 x 3: about IGI's 18 VPLs a set)
+    int sptPilots = 1;   ///< of which pilots, traced on every change to detect it (<= sptPaths)
+    int sptBudget = 6;   ///< groups traced again per frame at most
 
     // Reference path tracer.
     int pathSamples = 16;    ///< samples per pixel per frame

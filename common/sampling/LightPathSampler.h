@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "sampling/LightPathNumbers.h"
 #include "sampling/Scramble.h"
 
 namespace igi {
@@ -16,20 +17,17 @@ namespace igi {
 /// Sobol' point. Each further bounce uses padded replications (Kollig and Keller 2002): the
 /// same low-dimensional points of the set, in a random order of their own and with their own
 /// random bit vectors, which avoids the poor projections of high Sobol' dimensions.
-class LightPathSampler {
+class LightPathSampler final : public LightPathNumbers {
   public:
-    static constexpr unsigned kEmissionDims = 5;
-    static constexpr unsigned kBounceDims = 3;
-
     LightPathSampler(std::uint64_t seed, std::uint32_t frame, SampleStream stream,
                      std::uint32_t setIndex, std::uint32_t pathsPerSet, std::uint32_t maxBounces);
 
     /// Emission sample `dim` (< kEmissionDims) of path `path` (< pathsPerSet), in [0, 1).
-    float emission(std::uint32_t path, unsigned dim) const;
+    float emission(std::uint32_t path, unsigned dim) const override;
     /// Sample `dim` (< kBounceDims) of bounce `bounce` (1 .. maxBounces) of path `path`.
-    float bounce(std::uint32_t path, unsigned bounce, unsigned dim) const;
+    float bounce(std::uint32_t path, unsigned bounce, unsigned dim) const override;
 
-    std::uint32_t pathsPerSet() const { return paths_; }
+    std::uint32_t pathsPerSet() const override { return paths_; }
 
   private:
     std::uint32_t firstIndex_;

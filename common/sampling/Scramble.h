@@ -16,6 +16,7 @@ enum class SampleStream : std::uint32_t {
     PathTracer = 5,
     IndirectCausticPhotons = 6,  ///< photons shot from VPLs at mirrors and glass
     PhotonStream = 7,            ///< photon streaming's batches (keyed by batch, not frame)
+    SelectivePhotons = 8,        ///< selective photon tracing's Halton paths (keyed by index)
 };
 
 /// The random bit vector for one dimension of one stream in one frame. Every client derives the

@@ -26,11 +26,18 @@ void readIntegrator(const JsonNode& section, RenderSettings& s) {
         s.integrator =
             v->choice({"igi", "path"}) == "igi" ? IntegratorKind::Igi : IntegratorKind::Path;
     }
-    if (auto v = section.find("gi"))
-        s.gi = v->choice({"igi", "stream"}) == "igi" ? GiMode::Igi : GiMode::Stream;
+    if (auto v = section.find("gi")) {
+        const std::string gi = v->choice({"igi", "spt", "stream"});
+        s.gi = gi == "igi" ? GiMode::Igi : gi == "spt" ? GiMode::Spt : GiMode::Stream;
+    }
     readInt(section, "stream_vsls", 1, kMaxStreamVsls, s.streamVsls);
     readInt(section, "stream_photons", 1, 1 << 24, s.streamPhotons);
     readInt(section, "stream_window", 1, kMaxStreamWindow, s.streamWindow);
+    readInt(section, "spt_groups", 1, kMaxSptGroups, s.sptGroups);
+    readInt(section, "spt_paths", 1, 1024, s.sptPaths);
+    // Pilots are the first paths of their group: at most all of them.
+    readInt(section, "spt_pilots", 1, s.sptPaths, s.sptPilots);
+    readInt(section, "spt_budget", 1, kMaxSptGroups, s.sptBudget);
 }
 
 // Interleaving, direct light, VPLs and their clamp.
@@ -114,6 +121,10 @@ void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& setting
                        "stream_vsls",
                        "stream_photons",
                        "stream_window",
+                       "spt_groups",
+                       "spt_paths",
+                       "spt_pilots",
+                       "spt_budget",
                        "interleave",
                        "direct_samples",
                        "vpl_paths",

@@ -1,0 +1,73 @@
+#include "SceneTimeline.h"
+
+#include <gtest/gtest.h>
+
+namespace igi {
+namespace {
+
+SceneState twoObjects() {
+    SceneState s;
+    s.transforms.resize(2);
+    return s;
+}
+
+std::vector<SceneChange> moveTo(std::uint32_t mesh, float x) {
+    Transform t;
+    t.translate.x = x;
+    return {TransformChange{mesh, t}};
+}
+
+// A joiner gets the state of the base epoch and the epochs after it, at most the depth: applying
+// them in order gives the current state, and the frames are those the epochs began at.
+TEST(SceneTimeline, AJoinerGetsTheLatestEpochsAndTheStateBeforeThem) {
+    SceneTimeline timeline(twoObjects(), nullptr, 2);
+    std::uint32_t frame = 0;
+    timeline.beginFrame(frame++);  // epoch 0
+    for (int epoch = 1; epoch <= 4; ++epoch) {
+        timeline.control(moveTo(std::uint32_t(epoch % 2), float(epoch)));
+        timeline.beginFrame(frame++);  // frames 1, 3, 5, 7 begin epochs 1 .. 4
+        timeline.beginFrame(frame++);  // and the scene holds for one more frame
+    }
+    ASSERT_EQ(timeline.epoch(), 4u);
+    const SceneTimeline::Join join = timeline.join();
+    ASSERT_EQ(join.history.size(), 2u);
+    EXPECT_EQ(join.baseFirstFrame, 3u) << "epoch 2 began at frame 3";
+    EXPECT_EQ(join.history[0].firstFrame, 5u);
+    EXPECT_EQ(join.history[1].firstFrame, 7u);
+    SceneState state = twoObjects();
+    applyChanges(state, join.changes);
+    EXPECT_EQ(state.transforms[0].translate.x, 2.0f) << "the base: epoch 2";
+    EXPECT_EQ(state.transforms[1].translate.x, 1.0f);
+    for (const auto& e : join.history) applyChanges(state, e.changes);
+    EXPECT_EQ(state, timeline.state());
+    EXPECT_FALSE(timeline.historyComplete());
+}
+
+TEST(SceneTimeline, WithoutDepthAJoinerStartsInTheCurrentState) {
+    SceneTimeline timeline(twoObjects(), nullptr);
+    timeline.beginFrame(0);
+    timeline.control(moveTo(1, 3.0f));
+    timeline.beginFrame(1);
+    const SceneTimeline::Join join = timeline.join();
+    EXPECT_TRUE(join.history.empty());
+    EXPECT_EQ(join.baseFirstFrame, 1u);
+    SceneState state = twoObjects();
+    applyChanges(state, join.changes);
+    EXPECT_EQ(state, timeline.state());
+}
+
+TEST(SceneTimeline, AHistoryDeepEnoughReachesTheLoadedScene) {
+    SceneTimeline timeline(twoObjects(), nullptr, 8);
+    timeline.beginFrame(0);
+    timeline.control(moveTo(0, 1.0f));
+    timeline.beginFrame(1);
+    const SceneTimeline::Join join = timeline.join();
+    EXPECT_TRUE(timeline.historyComplete());
+    EXPECT_TRUE(join.changes.empty());
+    EXPECT_EQ(join.baseFirstFrame, 0u);
+    ASSERT_EQ(join.history.size(), 1u);
+    EXPECT_EQ(join.history[0].firstFrame, 1u);
+}
+
+}  // namespace
+}  // namespace igi
