@@ -31,12 +31,10 @@ Python 3 standard library plus matplotlib (Debian's python3-matplotlib, /usr/bin
 
 import argparse
 import csv
-import datetime
 import hashlib
 import json
 import math
 import os
-import platform
 import re
 import shutil
 import statistics
@@ -52,6 +50,10 @@ sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, PEERS)
 import embree_scene  # noqa: E402
 import igi_scene  # noqa: E402
+
+import report_util
+from report_util import machine, num, run
+
 
 SHARED = "/work/shared/scenes/cornell-box"
 
@@ -96,14 +98,6 @@ FIRST_FRAME_SCENES = ("default", "cornell-original", "cornell-sphere")
 
 def log(msg):
     print(f"[accuracy {time.strftime('%H:%M:%S')}] {msg}", flush=True)
-
-
-def run(cmd, **kw):
-    t0 = time.time()
-    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kw)
-    if proc.returncode != 0:
-        raise RuntimeError(f"command failed ({proc.returncode}): {' '.join(cmd)}\n{proc.stdout[-1500:]}{proc.stderr[-1500:]}")
-    return proc, time.time() - t0
 
 
 def frame_counts(n):
@@ -642,14 +636,6 @@ def pct(x, digits=2):
     return "n/a" if x is None else f"{100 * x:+.{digits}f} %"
 
 
-def num(x, digits=3):
-    if x is None:
-        return "n/a"
-    if isinstance(x, float) and math.isinf(x):
-        return "inf"
-    return f"{x:.{digits}g}"
-
-
 def judge(bench, conv):
     """The claims of the convergence part, each with its verdict and the numbers behind it."""
     a = bench.args
@@ -950,20 +936,6 @@ def claims_block(claims, smoke):
     return "\n".join(lines)
 
 
-def machine():
-    cpu = "?"
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return {"nproc": os.cpu_count(), "cpu": cpu, "date": datetime.datetime.now().isoformat(timespec="seconds"),
-            "load": " ".join(f"{x:.2f}" for x in os.getloadavg()), "kernel": platform.release()}
-
-
 def write_reports(bench, docs, command, started):
     rows = bench.rows
     mark_pareto(rows)
@@ -1024,21 +996,6 @@ def write_reports(bench, docs, command, started):
                    "first_frame": bench.first, "cycles_bias": bench.cycles_bias,
                    "pareto": [r for r in rows if r["pareto"]]}, f, indent=1, default=str)
     return parts, claims
-
-
-def splice(doc_path, parts):
-    """Replaces <!-- BEGIN GENERATED key --> ... <!-- END GENERATED key --> blocks."""
-    if not os.path.exists(doc_path):
-        return
-    with open(doc_path, encoding="utf-8") as f:
-        text = f.read()
-    for key, body in parts.items():
-        pattern = re.compile(rf"(<!-- BEGIN GENERATED {re.escape(key)} -->\n).*?(<!-- END GENERATED {re.escape(key)} -->)", re.S)
-        text, n = pattern.subn(lambda m: m.group(1) + body + "\n" + m.group(2), text)
-        if n == 0:
-            log(f"{doc_path} has no GENERATED {key} block: not written there")
-    with open(doc_path, "w", encoding="utf-8") as f:
-        f.write(text)
 
 
 def print_summary(claims, smoke, docs):
@@ -1133,7 +1090,7 @@ def main():
     docs = a.docs if a.docs else os.path.join(a.out, "report")
     parts, claims = write_reports(bench, docs, a.command, started)
     if a.docs and not a.quick:
-        splice(a.doc, parts)
+        report_util.splice(a.doc, parts, log)
     log(f"wrote {docs}/results.md, results.csv, summary.json and plots")
     print_summary(claims, not a.evidence, docs)
 

@@ -38,18 +38,9 @@ done
 extra=(python3-matplotlib openimageio-tools)
 if ((peers)); then extra+=(embree-tools blender); fi
 
-if [ -n "${IGI_BUILD:-}" ]; then
-  build="$(cd "$IGI_BUILD" && pwd)"
-  for p in "${extra[@]}"; do
-    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
-      echo "missing Debian package $p: run scripts/setup.sh ${extra[*]} (or unset IGI_BUILD)" >&2
-      exit 1
-    fi
-  done
-else
-  "$root/scripts/setup.sh" "${extra[@]}"
-  build="$root/build"
-fi
+# shellcheck source=scripts/bench_build.sh
+source "$root/scripts/bench_build.sh"
+bench_build "${extra[@]}"
 
 args=(--build "$build" --command "scripts/bench_accuracy.sh $*")
 if ((quick)); then

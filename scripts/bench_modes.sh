@@ -40,28 +40,9 @@ done
 
 extra=(python3-matplotlib python3-numpy openimageio-tools)
 
-if [ -n "${IGI_BUILD:-}" ]; then
-  if [ ! -d "$IGI_BUILD" ]; then
-    echo "IGI_BUILD=$IGI_BUILD is not a folder" >&2
-    exit 1
-  fi
-  build="$(cd "$IGI_BUILD" && pwd)"
-  for exe in igi-master igi-client igi-compare; do
-    if [ ! -x "$build/bin/$exe" ]; then
-      echo "IGI_BUILD=$IGI_BUILD has no bin/$exe: build it first (or unset IGI_BUILD)" >&2
-      exit 1
-    fi
-  done
-  for p in "${extra[@]}"; do
-    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
-      echo "missing Debian package $p: run scripts/setup.sh ${extra[*]} (or unset IGI_BUILD)" >&2
-      exit 1
-    fi
-  done
-else
-  "$root/scripts/setup.sh" "${extra[@]}"
-  build="$root/build"
-fi
+# shellcheck source=scripts/bench_build.sh
+source "$root/scripts/bench_build.sh"
+bench_build "${extra[@]}"
 
 args=(--build "$build" --command "scripts/bench_modes.sh $*")
 if ((quick)); then

@@ -24,7 +24,8 @@ scenes/cornell/ (example.anim.json, moving-light.anim.json, jump.anim.json):
      R, G, B) of the references blurred 3 x 3 (which divides their noise by about 3), and no
      channel of either reference above 1 (white on screen: the light itself); over the
      mask, flicker = mean |frame_t - frame_t-1| / mean reference (pairs whose mask holds under
-     1 % of the pixels are skipped). The references' own flicker on the same mask (their noise
+     1 % of the pixels, or whose mask is darker than 10 % of the animation's mean reference, the
+     light being off, are skipped). The references' own flicker on the same mask (their noise
      and what changed by less than the threshold) is reported beside it;
   5. lag, after each change that follows at least 4 frames of a still scene (jump.anim.json's
      frame 8): the still level is a mode's mean relMSE over the still frames before the change,
@@ -47,12 +48,10 @@ python3-numpy, /usr/bin/python3).
 
 import argparse
 import csv
-import datetime
 import hashlib
 import json
 import math
 import os
-import platform
 import re
 import shutil
 import statistics
@@ -63,6 +62,10 @@ import time
 import zlib
 
 import numpy as np
+
+import report_util
+from report_util import machine, num, run
+
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
@@ -83,6 +86,7 @@ ANIM_NAMES = [a[0] for a in ANIMS]
 DEFAULT_MODES = "igi,spt,stream"
 
 # Static mask and flicker.
+DARK_FRACTION = 0.1  # pairs whose static region is darker than this share of the mean: light off
 MASK_REL = 0.02  # references agree within 2 % of the larger ...
 MASK_ABS = 0.005  # ... plus 0.5 % of the image's mean
 MASK_MIN_FRACTION = 0.01  # a pair whose mask holds fewer pixels is skipped
@@ -124,14 +128,6 @@ PAPERS = [
 
 def log(msg):
     print(f"[modes {time.strftime('%H:%M:%S')}] {msg}", flush=True)
-
-
-def run(cmd, **kw):
-    t0 = time.time()
-    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kw)
-    if proc.returncode != 0:
-        raise RuntimeError(f"command failed ({proc.returncode}): {' '.join(cmd)}\n{proc.stdout[-1500:]}{proc.stderr[-1500:]}")
-    return proc, time.time() - t0
 
 
 class ModeRejected(RuntimeError):
@@ -437,6 +433,10 @@ class Bench:
         # Reference images, static masks and the references' own flicker.
         refs = [read_exr(p, self.scratch) for p in ref_images]
         pairs = {}  # t -> (mask, denominator, reference flicker) or the reason it is skipped
+        # A pair whose static region is nearly black (the light off) is no place to see flicker:
+        # a mode that still shows light there is late to follow the light (its error says so),
+        # and dividing by the black reference would make that any number at all.
+        animation_mean = statistics.mean(float(r.mean()) for r in refs)
         for t in range(1, frames):
             if camera_moved(anim, t):
                 pairs[t] = "camera moved"
@@ -453,8 +453,8 @@ class Bench:
                 pairs[t] = f"static mask {100 * frac:.2g} % of the pixels"
                 continue
             denom = float((0.5 * (ra + rb)).mean(axis=2)[mask].mean())
-            if denom <= 0:
-                pairs[t] = "static mask is black"
+            if denom <= DARK_FRACTION * animation_mean:
+                pairs[t] = f"static mask darker than {100 * DARK_FRACTION:.0f} % of the animation's mean (light off)"
                 continue
             ref_flicker = float(np.abs(rb - ra).mean(axis=2)[mask].mean()) / denom
             pairs[t] = (mask, denom, ref_flicker, frac)
@@ -610,14 +610,6 @@ def equal_time(summary):
 
 
 # -------------------------------------------------------------------- formatting
-def num(x, digits=3):
-    if x is None:
-        return "n/a"
-    if isinstance(x, float) and math.isinf(x):
-        return "inf"
-    return f"{x:.{digits}g}"
-
-
 def pct(x, digits=2, sign=False):
     if x is None:
         return "n/a"
@@ -634,22 +626,6 @@ def lag_text(lags):
         else:
             parts.append(f"{g['lag_frames']} frame{'' if g['lag_frames'] == 1 else 's'} ({g['lag_seconds']:.2g} s)")
     return "; ".join(parts)
-
-
-def machine():
-    cpu = "?"
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    u = platform.uname()
-    return {"uname": f"{u.system} {u.release} {u.machine}", "nproc": os.cpu_count(), "cpu": cpu,
-            "date": datetime.datetime.now().isoformat(timespec="seconds"),
-            "load": " ".join(f"{x:.2f}" for x in os.getloadavg())}
 
 
 def plot_errors(bench, name, path):
@@ -849,7 +825,8 @@ def write_reports(bench, docs, command, started, doc_prefix):
         f"Flicker: over pairs of consecutive frames whose camera did not move, the pixels whose references "
         f"(3 x 3 blurred luminance) agree within {100 * MASK_REL:.0f} % plus {100 * MASK_ABS:.1f} % of the image's "
         f"mean and stay at or below {MASK_WHITE:g} (white on screen: the light and its reflections are left out); mean |frame t - frame t-1| there over the mean reference there (pairs under "
-        f"{100 * MASK_MIN_FRACTION:.0f} % of the pixels skipped). Lag: after a change that follows at least "
+        f"{100 * MASK_MIN_FRACTION:.0f} % of the pixels skipped, and pairs whose static pixels are darker than "
+        f"{100 * DARK_FRACTION:.0f} % of the animation's mean reference: the light off). Lag: after a change that follows at least "
         f"{LAG_MIN_STILL} still frames, the frames until the relMSE is under {LAG_FACTOR} x the mode's mean over "
         "those still frames. Seconds per frame: the session's render time over its frames (throughput, "
         "`--stats-json`); rays per frame: the clients' count (eye, shadow and light-set rays).")
@@ -875,22 +852,6 @@ def write_reports(bench, docs, command, started, doc_prefix):
                    "notes": bench.notes, "summary": summary, "equal_time": eq, "papers": PAPERS},
                   f, indent=1, default=str)
     return {"modes": body}, summary, eq
-
-
-def splice(doc_path, parts):
-    """Replaces <!-- BEGIN GENERATED key --> ... <!-- END GENERATED key --> blocks."""
-    if not os.path.exists(doc_path):
-        log(f"{doc_path} is missing: not written")
-        return
-    with open(doc_path, encoding="utf-8") as f:
-        text = f.read()
-    for key, body in parts.items():
-        pattern = re.compile(rf"(<!-- BEGIN GENERATED {re.escape(key)} -->\n).*?(<!-- END GENERATED {re.escape(key)} -->)", re.S)
-        text, n = pattern.subn(lambda m: m.group(1) + body + "\n" + m.group(2), text)
-        if n == 0:
-            log(f"{doc_path} has no GENERATED {key} block: not written there")
-    with open(doc_path, "w", encoding="utf-8") as f:
-        f.write(text)
 
 
 def print_summary(bench, summary, eq, docs):
@@ -981,7 +942,7 @@ def main():
     doc_prefix = os.path.relpath(docs, os.path.dirname(os.path.abspath(a.doc))) + "/" if a.docs else ""
     parts, summary, eq = write_reports(bench, docs, a.command, started, doc_prefix)
     if a.docs and not a.quick:
-        splice(a.doc, parts)
+        report_util.splice(a.doc, parts, log)
         log(f"replaced the GENERATED modes block of {a.doc}")
     log(f"wrote {docs}/results.md, results.csv, summary.json and plots")
     print_summary(bench, summary, eq, docs)

@@ -34,6 +34,20 @@ void renderAnimation(const fs::path& dir, const std::string& mode, int clients, 
     ASSERT_EQ(r.exitCode, 0) << r.output;
 }
 
+/// The example animation (scenes/cornell/example.anim.json: objects, the light and the camera
+/// moving, 48 frames) at 80 x 60 in `mode`, without accumulation, written to `dir`/frame_NN.exr.
+void renderExample(const fs::path& dir, const std::string& mode, int clients) {
+    const fs::path cornell = sourceDir() / "scenes/cornell";
+    const ProcessResult r =
+        runProcess(masterCommand({"--scene", (cornell / "cornell.json").string(), "--animation",
+                                  (cornell / "example.anim.json").string(), "--gi", mode,
+                                  "--frames", "48", "--width", "80", "--height", "60",
+                                  "--local-clients", std::to_string(clients), "--no-accumulate",
+                                  "--output-sequence", (dir / "frame_%02d.exr").string()}),
+                   dir / "master.log");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+}
+
 fs::path frameFile(const fs::path& dir, int frame) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%02d.exr", frame);
@@ -60,8 +74,19 @@ void expectSameAnimationWithOneAndThreeClients(const std::string& mode,
     fs::remove_all(three);
 }
 
+void expectSameExampleWithOneAndThreeClients(const std::string& mode) {
+    const fs::path one = scratchDir(mode + "-example-one"),
+                   three = scratchDir(mode + "-example-three");
+    renderExample(one, mode, 1);
+    renderExample(three, mode, 3);
+    for (int f = 0; f < 48; ++f) expectSameImage(frameFile(one, f), frameFile(three, f));
+    fs::remove_all(one);
+    fs::remove_all(three);
+}
+
 TEST(Modes, StreamAnimationIsTheSameWithOneAndThreeClients) {
     expectSameAnimationWithOneAndThreeClients("stream");
+    expectSameExampleWithOneAndThreeClients("stream");
 }
 
 TEST(Modes, SptAnimationIsTheSameWithOneAndThreeClients) {
@@ -69,6 +94,7 @@ TEST(Modes, SptAnimationIsTheSameWithOneAndThreeClients) {
     // A jump, then a still scene whose frames go on tracing the touched groups (within one
     // epoch, counted from its first frame).
     expectSameAnimationWithOneAndThreeClients("spt", "jump.json", 8);
+    expectSameExampleWithOneAndThreeClients("spt");
 }
 
 // A client that joins mid-animation replays the epochs the master sends with its scene
