@@ -9,11 +9,12 @@
 # frame; writes docs/modes/ (results.csv, results.md, summary.json, plots) and the generated block
 # of docs/MODES.md, and prints a summary per animation and mode.
 #
-# Usage: scripts/bench_modes.sh [--quick] [--modes igi,spt,stream] [more modes_report.py options]
+# Usage: scripts/bench_modes.sh [--quick] [--modes igi,spt,stream,spt-eq,stream-eq] [more options]
 #   --quick           smoke run of a few minutes: the first 20 frames of each animation, a 128-spp
 #                     reference, one seed; everything goes to out/modes-quick/, docs/ are not touched
-#   --modes LIST      the GI modes to measure (default igi,spt,stream); a mode this igi-master's
-#                     --gi does not accept is skipped with a message
+#   --modes LIST      the GI modes to measure (default igi,spt,stream,spt-eq,stream-eq: the -eq
+#                     ones are spt and stream with smaller pools, at about IGI's time per frame);
+#                     a mode this igi-master's --gi does not accept is skipped with a message
 #   --anims LIST      a subset of example,moving-light,jump
 #   --width W --height H --clients N
 #                     image size (default 160 x 120) and local clients (default 1)
