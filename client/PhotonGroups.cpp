@@ -47,6 +47,7 @@ GroupTracer::GroupTracer(const LightingSetBuilder& builder, std::shared_ptr<cons
 
 void GroupTracer::tracePaths(std::uint32_t g, std::uint32_t count, RayCounters& rays,
                              PhotonGroup& out) const {
+    if (builder_.maxLightPathLength(true) < 2) return;  // no bounce: no indirect light
     const HaltonPaths paths(seed_, groups_, g, 0, count);
     std::uint32_t path = 0;
     // traceLightPaths gives each VPL its path's flux / count; the pool holds G groups.
@@ -72,13 +73,13 @@ PhotonGroup GroupTracer::trace(std::uint32_t g, std::uint32_t frame, RayCounters
     group.index = g;
     group.tracedFrame = frame;
     group.scene = state_;
-    if (builder_.maxLightPathLength(true) >= 2) tracePaths(g, paths_, rays, group);
+    tracePaths(g, paths_, rays, group);
     return group;
 }
 
 std::vector<std::uint32_t> GroupTracer::pilotMeshes(std::uint32_t g, RayCounters& rays) const {
     PhotonGroup pilots;
-    if (builder_.maxLightPathLength(true) >= 2) tracePaths(g, pilots_, rays, pilots);
+    tracePaths(g, pilots_, rays, pilots);
     return pilots.meshes;
 }
 
@@ -123,38 +124,36 @@ std::shared_ptr<const PhotonGroups> PhotonGroups::change(const GroupTracer& trac
             ++marked->update_.touched;
         }
     }
-    auto stepped = marked->step(tracer, frame, budget);
-    if (stepped == marked) return marked;
-    // One update for the frame: the marking and the step.
-    auto result = std::const_pointer_cast<PhotonGroups>(stepped);
-    result->update_.touched = marked->update_.touched;
-    result->update_.pilotGroups = marked->update_.pilotGroups;
-    result->update_.rays += marked->update_.rays;
-    return result;
+    marked->traceOldest(tracer, frame, budget);
+    return marked;
 }
 
 std::shared_ptr<const PhotonGroups> PhotonGroups::step(const GroupTracer& tracer,
                                                        std::uint32_t frame,
                                                        std::uint32_t budget) const {
+    if (invalidCount() == 0) return shared_from_this();
+    auto next = std::make_shared<PhotonGroups>(*this);
+    next->update_ = {};
+    next->scene_ = tracer.sharedState();
+    next->traceOldest(tracer, frame, budget);
+    return next;
+}
+
+void PhotonGroups::traceOldest(const GroupTracer& tracer, std::uint32_t frame,
+                               std::uint32_t budget) {
     std::vector<std::uint32_t> waiting;
     for (std::uint32_t g = 0; g < invalid_.size(); ++g)
         if (invalid_[g]) waiting.push_back(g);
-    if (waiting.empty()) return shared_from_this();
     // Oldest first, ties by index: the same order on every client.
     std::stable_sort(waiting.begin(), waiting.end(), [&](std::uint32_t a, std::uint32_t b) {
         return groups_[a]->tracedFrame < groups_[b]->tracedFrame;
     });
     waiting.resize(std::min<std::size_t>(waiting.size(), budget));
-    auto next = std::make_shared<PhotonGroups>(*this);
-    next->update_ = {};
-    next->scene_ = tracer.sharedState();
     for (std::uint32_t g : waiting) {
-        next->groups_[g] =
-            std::make_shared<const PhotonGroup>(tracer.trace(g, frame, next->update_.rays));
-        next->invalid_[g] = false;
+        groups_[g] = std::make_shared<const PhotonGroup>(tracer.trace(g, frame, update_.rays));
+        invalid_[g] = false;
     }
-    next->update_.traced = std::uint32_t(waiting.size());
-    return next;
+    update_.traced = std::uint32_t(waiting.size());
 }
 
 std::uint32_t PhotonGroups::invalidCount() const {

@@ -103,6 +103,9 @@ class PhotonGroups final : public LightingHistory,
     }
 
   private:
+    /// Traces up to `budget` invalid groups again, the oldest first, into this (unshared) pool.
+    void traceOldest(const GroupTracer& tracer, std::uint32_t frame, std::uint32_t budget);
+
     std::vector<std::shared_ptr<const PhotonGroup>> groups_;
     std::vector<bool> invalid_;
     std::shared_ptr<const SceneState> scene_;  ///< the scene of the pool's frame

@@ -113,7 +113,7 @@ struct RenderSettings {
 
     // Selective photon tracing (GiMode::Spt). The pool is sptGroups x sptPaths light paths.
     int sptGroups = 36;  ///< path groups G (2^a 3^b ...: the Halton periodicity groups them)
-    int sptPaths = 3;    ///< light paths per group (36 x 3: about IGI's 18 VPLs a set)
+    int sptPaths = 3;    ///< light paths per group
     int sptPilots = 1;   ///< of which pilots, traced on every change to detect it (<= sptPaths)
     int sptBudget = 6;   ///< groups traced again per frame at most
 
