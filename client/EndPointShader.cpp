@@ -113,19 +113,19 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
 
     // Direct light: not bounded (its singularity is the light's own size, and for a glossy
     // lobe the MIS weight takes the light samples out where BRDF sampling is better).
-    for (const Vpl& v : set.direct) {
+    auto addDirect = [&](const Vpl& v) {
         const glm::vec3 toLight = v.position - origin;
         const float d2 = glm::dot(toLight, toLight);
-        if (!(d2 > 0)) continue;
+        if (!(d2 > 0)) return;
         const float d = std::sqrt(d2);
         const glm::vec3 w = toLight / d;
         const float cosX = glm::dot(n, w);
-        if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) continue;
+        if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) return;
         const float cosY = v.omni ? 1.0f : -glm::dot(v.normal, w);
-        if (cosY <= 0) continue;
+        if (cosY <= 0) return;
         const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
         const float r = residual ? residualWeight(residual, b.sharpness(cosAlpha)) : 1.0f;
-        if (!(r > 0)) continue;
+        if (!(r > 0)) return;
         const glm::vec3 e = v.power * (cosX * cosY / d2 * r);
         glm::vec3 g(0.0f);
         if (glossy) {
@@ -135,6 +135,12 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
             g = e * b.glossy(cosAlpha) * mis;
         }
         batch.add(w, d, e, g, sums.irradiance, sums.glossy);
+    };
+    for (const Vpl& v : set.direct) addDirect(v);
+    // With a light tree the point turns the set's numbers into light samples of its own.
+    for (const glm::vec3& u : set.directNumbers) {
+        const LightSample s = lights_.sampleAt(x.position, n, u.x, {u.y, u.z});
+        if (s.pdf > 0) addDirect(directLightVpl(s, scene_, directSamples_));
     }
 
     // Indirect light: every connection bounded, through the BRDFs at both ends.
@@ -242,8 +248,8 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
         const glm::vec3 le = emittedToward(hit, wy);
         if (!isBlack(le)) {
             const float cosLight = glm::dot(wy, hit.geometricNormal);
-            const float lightPdf =
-                lights_.areaPdf(hit.mesh, hit.triangle) * d2 / std::max(cosLight, 1e-8f);
+            const float lightPdf = lights_.areaPdfAt(hit.mesh, hit.triangle, x.position, b.normal) *
+                                   d2 / std::max(cosLight, 1e-8f);
             const float mis = powerHeuristic(pdf, float(directSamples_) * lightPdf);
             sums.glossy += le * glossyF * (scale * mis);
         }

@@ -16,7 +16,10 @@ namespace igi {
 /// in the accumulation, which the master sends) and k, so every client that renders a tile of
 /// k builds exactly the same set, and no one waits for anyone.
 struct LightingSet {
-    std::vector<Vpl> direct;    ///< samples on the lights (connections not bounded)
+    std::vector<Vpl> direct;  ///< samples on the lights (connections not bounded)
+    /// With a light tree (Lights::choosesPerPoint) instead of `direct`: the numbers each point
+    /// turns into its own light samples (choice, then a point on the chosen light).
+    std::vector<glm::vec3> directNumbers;
     std::vector<Vpl> indirect;  ///< VPLs from light paths (connections bounded)
     CausticGrid caustics;  ///< photons from the lights that reached a non-delta surface through
                            ///< mirrors and glass (caustics)

@@ -148,17 +148,17 @@ void LightingSetBuilder::sampleDirect(std::uint32_t frame, std::uint32_t setInde
     for (std::uint32_t j = 0; j < n; ++j) {
         // Set k owns points [k n, (k + 1) n): the sets of all k together stratify the lights.
         const std::uint32_t index = setIndex * n + j;
-        const LightSample s = lights_.sample(
-            Sobol::scrambled(index, 0, scramble[0]),
-            {Sobol::scrambled(index, 1, scramble[1]), Sobol::scrambled(index, 2, scramble[2])});
-        if (!(s.pdf > 0)) continue;
-        Vpl v;
-        v.omni = s.isPoint;
-        v.normal = s.normal;
-        v.position = s.isPoint ? s.position : scene_.offsetOrigin(s.position, s.normal);
-        v.power = s.emitted / (s.pdf * float(n));
-        v.areaPdf = s.isPoint ? 0.0f : s.pdf;
-        set.direct.push_back(v);
+        const glm::vec3 u(Sobol::scrambled(index, 0, scramble[0]),
+                          Sobol::scrambled(index, 1, scramble[1]),
+                          Sobol::scrambled(index, 2, scramble[2]));
+        // With a light tree each point chooses its own lights with the set's numbers, so the
+        // sets still stratify the choice over neighbouring pixels, whose trees agree closely.
+        if (lights_.choosesPerPoint()) {
+            set.directNumbers.push_back(u);
+            continue;
+        }
+        const LightSample s = lights_.sample(u.x, {u.y, u.z});
+        if (s.pdf > 0) set.direct.push_back(directLightVpl(s, scene_, int(n)));
     }
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "math/Color.h"
@@ -34,7 +35,8 @@ Corners cornersOf(const TraceableScene::WorldTriangle& t) {
 
 }  // namespace
 
-Lights::Lights(const TraceableScene& traceable, const std::vector<PointLight>& pointLights) {
+Lights::Lights(const TraceableScene& traceable, const std::vector<PointLight>& pointLights,
+               LightSampling sampling) {
     std::vector<float> power;
     // A face listed twice (duplicated in its file) is one surface, seen once: it must be one
     // light, or sampling it would count its light twice. The copy maps to the same emitter so that
@@ -71,14 +73,37 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PointLight>& p
         power.push_back(4.0f * kPi * luminance(p.intensity));
     }
     distribution_ = Distribution1D(power);
+    if (!usesLightTree(sampling, emitters_.size()) || distribution_.empty()) return;
+    std::vector<LightTree::Light> bounds(emitters_.size());
+    for (std::size_t i = 0; i < emitters_.size(); ++i) {
+        const Emitter& e = emitters_[i];
+        LightTree::Light& b = bounds[i];
+        b.lo = glm::min(e.p0, glm::min(e.p0 + e.e1, e.p0 + e.e2));
+        b.hi = glm::max(e.p0, glm::max(e.p0 + e.e1, e.p0 + e.e2));
+        b.normal = e.normal;
+        b.omni = e.isPoint;
+        b.power = power[i];
+    }
+    tree_ = LightTree(bounds);
 }
 
 LightSample Lights::sample(float uSelect, glm::vec2 uPoint, float* uRemapped) const {
-    LightSample s;
-    if (empty()) return s;
+    if (empty()) return {};
     const std::size_t i = distribution_.sample(uSelect, uRemapped);
+    return pointOn(i, distribution_.pdf(i), uPoint);
+}
+
+LightSample Lights::sampleAt(glm::vec3 p, glm::vec3 n, float uSelect, glm::vec2 uPoint) const {
+    if (!choosesPerPoint()) return sample(uSelect, uPoint);
+    std::uint32_t i = 0;
+    float selection = 0;
+    if (!tree_.sample(p, n, uSelect, i, selection)) return {};
+    return pointOn(i, selection, uPoint);
+}
+
+LightSample Lights::pointOn(std::size_t i, float select, glm::vec2 uPoint) const {
+    LightSample s;
     const Emitter& e = emitters_[i];
-    const float select = distribution_.pdf(i);
     s.emitted = e.emitted;
     s.isPoint = e.isPoint;
     if (e.isPoint) {
@@ -94,9 +119,31 @@ LightSample Lights::sample(float uSelect, glm::vec2 uPoint, float* uRemapped) co
 }
 
 float Lights::areaPdf(std::uint32_t mesh, std::uint32_t triangle) const {
+    return areaPdfWith(mesh, triangle, glm::vec3(0.0f), glm::vec3(0.0f), false);
+}
+
+float Lights::areaPdfAt(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p,
+                        glm::vec3 n) const {
+    return areaPdfWith(mesh, triangle, p, n, choosesPerPoint());
+}
+
+float Lights::areaPdfWith(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p, glm::vec3 n,
+                          bool atPoint) const {
     const auto it = triangleToEmitter_.find(triangleKey(mesh, triangle));
     if (it == triangleToEmitter_.end()) return 0;
-    return distribution_.pdf(it->second) / emitters_[it->second].area;
+    const float selection =
+        atPoint ? tree_.probability(p, n, it->second) : distribution_.pdf(it->second);
+    return selection / emitters_[it->second].area;
+}
+
+Vpl directLightVpl(const LightSample& s, const TraceableScene& scene, int samples) {
+    Vpl v;
+    v.omni = s.isPoint;
+    v.normal = s.normal;
+    v.position = s.isPoint ? s.position : scene.offsetOrigin(s.position, s.normal);
+    v.power = s.emitted / (s.pdf * float(samples));
+    v.areaPdf = s.isPoint ? 0.0f : s.pdf;
+    return v;
 }
 
 }  // namespace igi

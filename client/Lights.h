@@ -7,7 +7,10 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "LightTree.h"
 #include "TraceableScene.h"
+#include "Vpl.h"
+#include "render/RenderSettings.h"
 #include "sampling/Distribution1D.h"
 #include "scene/Scene.h"
 
@@ -23,24 +26,37 @@ struct LightSample {
 };
 
 /// Every light source of a scene: emissive triangles (from Ke materials and quad lights; zero-area
-/// ones skipped, a face listed twice counted once) and point lights, chosen by emitted power so
-/// that scenes with many lights spend their few samples on the lights that matter.
+/// ones skipped, a face listed twice counted once) and point lights. Light paths leave them by
+/// emitted power; a point that receives light chooses them either by power too or, with many
+/// lights, by what each could give it there (a LightTree), so that its few samples go to the
+/// lights that matter to it.
 class Lights {
   public:
     /// The emissive triangles of `traceable` (quad lights included) and the point lights that
-    /// are on.
-    Lights(const TraceableScene& traceable, const std::vector<PointLight>& pointLights);
+    /// are on; `sampling` says how a receiving point chooses among them (Auto: the tree from
+    /// kLightTreeMinLights lights on).
+    Lights(const TraceableScene& traceable, const std::vector<PointLight>& pointLights,
+           LightSampling sampling = LightSampling::Power);
 
     bool empty() const { return distribution_.empty(); }
     std::size_t count() const { return emitters_.size(); }
+    /// Whether sampleAt() chooses by the receiving point (the tree) rather than by power.
+    bool choosesPerPoint() const { return !tree_.empty(); }
 
     /// Chooses a light with uSelect (by power) and a point on it with uPoint. `uRemapped`, if
     /// given, receives uSelect rescaled within the chosen light: a fresh uniform number.
     LightSample sample(float uSelect, glm::vec2 uPoint, float* uRemapped = nullptr) const;
 
+    /// The same for light arriving at p (unit normal n, front side only): by the tree when
+    /// choosesPerPoint(), else as sample().
+    LightSample sampleAt(glm::vec3 p, glm::vec3 n, float uSelect, glm::vec2 uPoint) const;
+
     /// Area-measure density with which sample() picks a point on the emissive triangle
     /// (mesh, triangle), for multiple importance sampling; 0 if it is not a light.
     float areaPdf(std::uint32_t mesh, std::uint32_t triangle) const;
+
+    /// The same for sampleAt(p, n).
+    float areaPdfAt(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p, glm::vec3 n) const;
 
     /// Total emitted power, summed luminance (for tests and statistics).
     double totalPower() const { return distribution_.total(); }
@@ -54,9 +70,19 @@ class Lights {
         bool isPoint = false;
     };
 
+    LightSample pointOn(std::size_t emitter, float selection, glm::vec2 uPoint) const;
+    float areaPdfWith(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p, glm::vec3 n,
+                      bool atPoint) const;
+
     std::vector<Emitter> emitters_;
     Distribution1D distribution_;
+    LightTree tree_;  ///< empty when receivers choose by power
     std::unordered_map<std::uint64_t, std::uint32_t> triangleToEmitter_;
 };
+
+/// A light sample as the point light that one of `samples` direct-light shadow rays goes to: its
+/// power is the sample's emission over its density and the count, its position lifted off the
+/// light's surface (shadow rays end there).
+Vpl directLightVpl(const LightSample& s, const TraceableScene& scene, int samples);
 
 }  // namespace igi

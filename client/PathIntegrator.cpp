@@ -44,6 +44,7 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
     glm::vec3 radiance(0.0f), beta(1.0f);
     bool lastWasNonDelta = false;
     float lastPdf = 0;  // solid-angle density of the last non-delta bounce's direction
+    glm::vec3 lastPosition(0.0f), lastNormal(0.0f);  // where it was sampled (the light tree's)
     SurfacePoint hit;
     for (int depth = 0; depth < settings_.maxPathLength; ++depth) {
         if (!scene_.intersect(origin, direction, kInfinity, hit, counters)) break;
@@ -53,8 +54,9 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
             float weight = 1.0f;
             if (lastWasNonDelta) {  // the light could also have been sampled directly
                 const float cosLight = glm::dot(wo, hit.geometricNormal);
-                const float lightPdf = lights_.areaPdf(hit.mesh, hit.triangle) * hit.distance *
-                                       hit.distance / std::max(cosLight, 1e-8f);
+                const float lightPdf =
+                    lights_.areaPdfAt(hit.mesh, hit.triangle, lastPosition, lastNormal) *
+                    hit.distance * hit.distance / std::max(cosLight, 1e-8f);
                 weight = powerHeuristic(lastPdf, lightPdf);
             }
             radiance += beta * le * weight;
@@ -83,6 +85,8 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
             beta *= f * (cosX / (pdf * pNonDelta));
             lastWasNonDelta = true;
             lastPdf = pdf;
+            lastPosition = hit.position;
+            lastNormal = b.normal;
         } else {
             glm::vec3 weight;
             if (!sampleLobe(lobes, lobe, u, direction, weight)) break;
@@ -102,7 +106,7 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
 
 glm::vec3 PathIntegrator::directLight(const SurfacePoint& hit, const Lobes& lobes, float uSelect,
                                       glm::vec2 uPoint, RayCounters& counters) const {
-    const LightSample ls = lights_.sample(uSelect, uPoint);
+    const LightSample ls = lights_.sampleAt(hit.position, lobes.brdf.normal, uSelect, uPoint);
     if (!(ls.pdf > 0)) return glm::vec3(0.0f);
     const glm::vec3 shadowOrigin = scene_.offsetOrigin(hit.position, lobes.faceNormal);
     const glm::vec3 toLight = ls.position - shadowOrigin;

@@ -52,7 +52,7 @@ TileRenderer::TileRenderer(const TraceableScene& scene, const SceneState& state,
       settings_(settings),
       image_(image),
       camera_(state.camera, image.width, image.height),
-      lights_(scene, state.pointLights),
+      lights_(scene, state.pointLights, settings.lightSampling),
       builder_(scene, lights_, settings),
       method_(makeLightingMethod(builder_, scene, state, settings, context)),
       cache_(*method_),
@@ -114,7 +114,8 @@ void TileRenderer::renderChunk(TileJob& job, int begin, int end) {
             local.setsBuilt = 1;
             counters += set->buildRays;
         }
-        local.vpls = std::uint32_t(set->direct.size() + set->indirect.size());
+        local.vpls =
+            std::uint32_t(set->direct.size() + set->directNumbers.size() + set->indirect.size());
         local.causticPhotons =
             std::uint32_t(set->caustics.photons().size() + set->indirectCaustics.photons().size());
         for (int i = begin; i < end; ++i) {

@@ -96,6 +96,12 @@ int main(int argc, char** argv) {
                                  "again) or stream (photon streaming onto surface lights); "
                                  "docs/MODES.md")
                       ->check(CLI::IsMember({"igi", "spt", "stream"}));
+    std::string lightSampling;
+    auto* lightSamplingOpt =
+        app.add_option("--light-sampling", lightSampling,
+                       "how a point chooses the lights it samples: power, tree (by each light's "
+                       "estimated contribution there), or auto (tree from 8 emitters on)")
+            ->check(CLI::IsMember({"auto", "power", "tree"}));
     auto* sppOpt = app.add_option("--spp", spp, "path tracer samples per pixel per frame");
     auto* interleaveOpt = app.add_option("--interleave", interleave, "interleaving pattern NxM");
     auto* filterOpt = app.add_option("--filter", filter, "discontinuity buffer size NxM");
@@ -196,6 +202,7 @@ int main(int argc, char** argv) {
     try {
         if (integratorOpt->count()) render["integrator"] = integrator;
         if (giOpt->count()) render["gi"] = gi;
+        if (lightSamplingOpt->count()) render["light_sampling"] = lightSampling;
         if (sppOpt->count()) render["path_samples"] = spp;
         if (interleaveOpt->count()) render["interleave"] = parsePair(interleave, "--interleave");
         if (filterOpt->count()) render["filter"] = parsePair(filter, "--filter");

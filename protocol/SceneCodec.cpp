@@ -90,6 +90,7 @@ void writeRenderSettings(ByteWriter& out, const RenderSettings& s) {
     out.i32(s.sptPaths);
     out.i32(s.sptPilots);
     out.i32(s.sptBudget);
+    out.u8(static_cast<std::uint8_t>(s.lightSampling));
 }
 
 RenderSettings readRenderSettings(ByteReader& in) {
@@ -140,6 +141,10 @@ RenderSettings readRenderSettings(ByteReader& in) {
     s.sptPaths = readInt(in, "sptPaths", 1, 1024);
     s.sptPilots = readInt(in, "sptPilots", 1, s.sptPaths);
     s.sptBudget = readInt(in, "sptBudget", 1, kMaxSptGroups);
+    const std::uint8_t lightSampling = in.u8();
+    if (lightSampling > static_cast<std::uint8_t>(LightSampling::Tree))
+        in.fail("unknown light sampling " + std::to_string(lightSampling));
+    s.lightSampling = static_cast<LightSampling>(lightSampling);
     return s;
 }
 

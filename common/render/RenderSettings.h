@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -30,6 +31,23 @@ enum class GiMode : std::uint8_t {
 /// The most path groups of selective photon tracing: every scene change checks each one.
 constexpr int kMaxSptGroups = 65536;
 
+/// How a point that receives direct light chooses among the scene's lights.
+enum class LightSampling : std::uint8_t {
+    Auto,   ///< Tree from kLightTreeMinLights lights on, Power below
+    Power,  ///< by emitted power alone, the same for every point (the paper's choice)
+    Tree,   ///< by a light tree's estimate of each light's contribution at the point
+};
+
+/// From this many emitters (emissive triangles and point lights) on, Auto uses the tree. Below
+/// it the lights are few enough that power alone spends the samples well, and the images stay
+/// exactly as they were (a quad light is two triangles: up to three quad lights keep power).
+constexpr std::size_t kLightTreeMinLights = 8;
+
+inline bool usesLightTree(LightSampling sampling, std::size_t lights) {
+    return sampling == LightSampling::Tree ||
+           (sampling == LightSampling::Auto && lights >= kLightTreeMinLights);
+}
+
 /// What restores the energy that bounding the VPL connections removes.
 enum class ClampCompensation : std::uint8_t {
     Off,           ///< nothing: the bound's energy is lost (the paper's estimator)
@@ -49,8 +67,10 @@ struct RenderSettings {
     int interleaveX = 3;
     int interleaveY = 3;
 
-    // Direct light: points sampled on the lights (by power) per set; one shadow ray each.
+    // Direct light: points sampled on the lights per set (by power), or, with a light tree, the
+    // numbers per set that each point turns into its own light samples; one shadow ray each.
     int directSamples = 4;
+    LightSampling lightSampling = LightSampling::Auto;
 
     // Indirect light from virtual point lights (VPLs).
     int vplPaths = 0;       ///< light paths per set; 0 derives it from indirectVpls

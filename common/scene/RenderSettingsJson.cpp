@@ -46,6 +46,13 @@ void readIgiLighting(const JsonNode& section, RenderSettings& s) {
     if (auto v = section.find("interleave")) readPair(*v, 1, 16, s.interleaveX, s.interleaveY);
     // Shadow rays towards points sampled on the lights, per pixel.
     readInt(section, "direct_samples", 0, 256, s.directSamples);
+    // How a point chooses those lights.
+    if (auto v = section.find("light_sampling")) {
+        const std::string how = v->choice({"auto", "power", "tree"});
+        s.lightSampling = how == "auto"    ? LightSampling::Auto
+                          : how == "power" ? LightSampling::Power
+                                           : LightSampling::Tree;
+    }
     // Light paths per set; 0 derives them from indirect_vpls.
     readInt(section, "vpl_paths", 0, 100000, s.vplPaths);
     readInt(section, "indirect_vpls", 0, 100000, s.indirectVpls);
@@ -127,6 +134,7 @@ void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& setting
                        "spt_budget",
                        "interleave",
                        "direct_samples",
+                       "light_sampling",
                        "vpl_paths",
                        "indirect_vpls",
                        "max_light_path_length",

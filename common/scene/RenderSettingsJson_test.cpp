@@ -19,6 +19,25 @@ TEST(RenderSettingsJson, AbsentKeysKeepTheirValue) {
     EXPECT_EQ(s.integrator, IntegratorKind::Igi);
 }
 
+TEST(RenderSettingsJson, LightSamplingChoices) {
+    RenderSettings s;
+    EXPECT_EQ(s.lightSampling, LightSampling::Auto);
+    for (const auto& [name, value] : {std::pair{"power", LightSampling::Power},
+                                      std::pair{"tree", LightSampling::Tree},
+                                      std::pair{"auto", LightSampling::Auto}}) {
+        applyRenderSettingsJson(nlohmann::json{{"light_sampling", name}}, s, "f", "");
+        EXPECT_EQ(s.lightSampling, value) << name;
+    }
+    EXPECT_THROW(
+        applyRenderSettingsJson(nlohmann::json{{"light_sampling", "lightcuts"}}, s, "f", ""),
+        SceneError);
+    // Auto: the tree from kLightTreeMinLights emitters on.
+    EXPECT_FALSE(usesLightTree(LightSampling::Auto, kLightTreeMinLights - 1));
+    EXPECT_TRUE(usesLightTree(LightSampling::Auto, kLightTreeMinLights));
+    EXPECT_TRUE(usesLightTree(LightSampling::Tree, 1));
+    EXPECT_FALSE(usesLightTree(LightSampling::Power, 1000));
+}
+
 TEST(RenderSettingsJson, ErrorsUseTheGivenFileAndPrefix) {
     RenderSettings s;
     auto apply = [&](const char* text) {

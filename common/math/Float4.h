@@ -1,0 +1,120 @@
+#pragma once
+
+// Four floats computed lane by lane: SSE where the compiler targets it (every x86-64), plain
+// arrays elsewhere. Only what the light tree needs; every operation is IEEE-exact per lane (no
+// approximate reciprocals), so both versions give the same bits.
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#else
+#include <algorithm>
+#include <cmath>
+#endif
+
+namespace igi {
+
+#if defined(__SSE2__)
+struct Float4 {
+    __m128 v;
+    Float4() : v(_mm_setzero_ps()) {}
+    Float4(float x) : v(_mm_set1_ps(x)) {}  // NOLINT: a scalar broadcasts
+    explicit Float4(__m128 x) : v(x) {}
+    static Float4 load(const float* p) { return Float4(_mm_loadu_ps(p)); }
+    void store(float* p) const { _mm_storeu_ps(p, v); }
+};
+inline Float4 operator+(Float4 a, Float4 b) {
+    return Float4(_mm_add_ps(a.v, b.v));
+}
+inline Float4 operator-(Float4 a, Float4 b) {
+    return Float4(_mm_sub_ps(a.v, b.v));
+}
+inline Float4 operator*(Float4 a, Float4 b) {
+    return Float4(_mm_mul_ps(a.v, b.v));
+}
+inline Float4 operator/(Float4 a, Float4 b) {
+    return Float4(_mm_div_ps(a.v, b.v));
+}
+inline Float4 min(Float4 a, Float4 b) {
+    return Float4(_mm_min_ps(a.v, b.v));
+}
+inline Float4 max(Float4 a, Float4 b) {
+    return Float4(_mm_max_ps(a.v, b.v));
+}
+inline Float4 sqrt(Float4 a) {
+    return Float4(_mm_sqrt_ps(a.v));
+}
+/// Lane masks: all bits set where the comparison holds.
+inline Float4 greater(Float4 a, Float4 b) {
+    return Float4(_mm_cmpgt_ps(a.v, b.v));
+}
+inline Float4 lessEqual(Float4 a, Float4 b) {
+    return Float4(_mm_cmple_ps(a.v, b.v));
+}
+inline Float4 operator&(Float4 a, Float4 b) {
+    return Float4(_mm_and_ps(a.v, b.v));
+}
+inline Float4 operator|(Float4 a, Float4 b) {
+    return Float4(_mm_or_ps(a.v, b.v));
+}
+/// mask ? a : b, lane by lane.
+inline Float4 select(Float4 mask, Float4 a, Float4 b) {
+    return Float4(_mm_or_ps(_mm_and_ps(mask.v, a.v), _mm_andnot_ps(mask.v, b.v)));
+}
+#else
+struct Float4 {
+    float v[4];
+    Float4() : v{0, 0, 0, 0} {}
+    Float4(float x) : v{x, x, x, x} {}  // NOLINT: a scalar broadcasts
+    static Float4 load(const float* p) {
+        Float4 r;
+        for (int i = 0; i < 4; ++i) r.v[i] = p[i];
+        return r;
+    }
+    void store(float* p) const {
+        for (int i = 0; i < 4; ++i) p[i] = v[i];
+    }
+    template <class F>
+    static Float4 map(F f) {
+        Float4 r;
+        for (int i = 0; i < 4; ++i) r.v[i] = f(i);
+        return r;
+    }
+};
+inline Float4 operator+(Float4 a, Float4 b) {
+    return Float4::map([&](int i) { return a.v[i] + b.v[i]; });
+}
+inline Float4 operator-(Float4 a, Float4 b) {
+    return Float4::map([&](int i) { return a.v[i] - b.v[i]; });
+}
+inline Float4 operator*(Float4 a, Float4 b) {
+    return Float4::map([&](int i) { return a.v[i] * b.v[i]; });
+}
+inline Float4 operator/(Float4 a, Float4 b) {
+    return Float4::map([&](int i) { return a.v[i] / b.v[i]; });
+}
+inline Float4 min(Float4 a, Float4 b) {
+    return Float4::map([&](int i) { return b.v[i] < a.v[i] ? b.v[i] : a.v[i]; });
+}
+inline Float4 max(Float4 a, Float4 b) {
+    return Float4::map([&](int i) { return b.v[i] > a.v[i] ? b.v[i] : a.v[i]; });
+}
+inline Float4 sqrt(Float4 a) {
+    return Float4::map([&](int i) { return std::sqrt(a.v[i]); });
+}
+inline Float4 greater(Float4 a, Float4 b) {
+    return Float4::map([&](int i) { return a.v[i] > b.v[i] ? 1.0f : 0.0f; });
+}
+inline Float4 lessEqual(Float4 a, Float4 b) {
+    return Float4::map([&](int i) { return a.v[i] <= b.v[i] ? 1.0f : 0.0f; });
+}
+inline Float4 operator&(Float4 a, Float4 b) {
+    return Float4::map([&](int i) { return a.v[i] != 0 && b.v[i] != 0 ? 1.0f : 0.0f; });
+}
+inline Float4 operator|(Float4 a, Float4 b) {
+    return Float4::map([&](int i) { return a.v[i] != 0 || b.v[i] != 0 ? 1.0f : 0.0f; });
+}
+inline Float4 select(Float4 mask, Float4 a, Float4 b) {
+    return Float4::map([&](int i) { return mask.v[i] != 0 ? a.v[i] : b.v[i]; });
+}
+#endif
+
+}  // namespace igi
