@@ -138,8 +138,9 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
     };
     for (const Vpl& v : set.direct) addDirect(v);
     // With a light tree the point turns the set's numbers into light samples of its own.
+    LightTree::Memo memo;
     for (const glm::vec3& u : set.directNumbers) {
-        const LightSample s = lights_.sampleAt(x.position, n, u.x, {u.y, u.z});
+        const LightSample s = lights_.sampleAt(x.position, n, u.x, {u.y, u.z}, &memo);
         if (s.pdf > 0) addDirect(directLightVpl(s, scene_, directSamples_));
     }
 

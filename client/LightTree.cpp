@@ -225,14 +225,19 @@ void LightTree::importance(const Node& node, glm::vec3 p, glm::vec3 n, float out
 }
 
 bool LightTree::sample(glm::vec3 p, glm::vec3 n, float u, std::uint32_t& light, float& probability,
-                       float* uRemapped) const {
+                       float* uRemapped, Memo* memo) const {
     if (empty()) return false;
     std::uint32_t index = 0;
     float prob = 1;
     for (;;) {
         const Node& node = nodes_[index];
-        float w[4];
-        importance(node, p, n, w);
+        float weights[4];
+        const float* w = memo ? memo->find(index) : nullptr;
+        if (!w) {
+            importance(node, p, n, weights);
+            if (memo) memo->add(index, weights);
+            w = weights;
+        }
         const float total = (w[0] + w[1]) + (w[2] + w[3]);
         if (!(total > 0)) return false;
         // The child whose share of [0, 1) holds u; u rescaled within that share.

@@ -35,11 +35,35 @@ class LightTree {
 
     bool empty() const { return nodes_.empty(); }
 
+    /// The weights of the nodes a point's walks visited, so that its next walks (a point takes
+    /// several light samples) need not weigh them again. For one p and n only.
+    class Memo {
+      public:
+        const float* find(std::uint32_t node) const {
+            for (int i = 0; i < size_; ++i)
+                if (nodes_[i] == node) return weights_[i];
+            return nullptr;
+        }
+        void add(std::uint32_t node, const float w[4]) {
+            if (size_ == kSize) return;
+            nodes_[size_] = node;
+            for (int k = 0; k < 4; ++k) weights_[size_][k] = w[k];
+            ++size_;
+        }
+
+      private:
+        static constexpr int kSize = 12;
+        int size_ = 0;
+        std::uint32_t nodes_[kSize];
+        float weights_[kSize][4];
+    };
+
     /// Chooses a light for the point p with unit normal n (only its front side receives; a zero
     /// n receives from everywhere) with u in [0, 1). False when no light can reach the point.
     /// `uRemapped`, if given, receives u rescaled within the choice: a fresh uniform number.
+    /// `memo`, if given, must have been used for this p and n only; the choice is the same.
     bool sample(glm::vec3 p, glm::vec3 n, float u, std::uint32_t& light, float& probability,
-                float* uRemapped = nullptr) const;
+                float* uRemapped = nullptr, Memo* memo = nullptr) const;
 
     /// The probability with which sample() chooses `light` for p and n.
     float probability(glm::vec3 p, glm::vec3 n, std::uint32_t light) const;

@@ -67,12 +67,20 @@ TEST(LightTree, ProbabilitiesSumToOneAndAgreeWithSampling) {
         ASSERT_LE(sum, 1.0 + 1e-4);
         sums += sum;
         int found = 0;
+        LightTree::Memo memo;
         for (int j = 0; j < 4096; ++j) {
             std::uint32_t light = 0;
             float probability = 0;
             if (!tree.sample(r.p, r.n, (float(j) + 0.5f) / 4096.0f, light, probability)) continue;
             ++found;
             EXPECT_FLOAT_EQ(probability, tree.probability(r.p, r.n, light));
+            // A memo of earlier walks at the same point changes nothing.
+            std::uint32_t again = 0;
+            float againProbability = 0;
+            ASSERT_TRUE(tree.sample(r.p, r.n, (float(j) + 0.5f) / 4096.0f, again, againProbability,
+                                    nullptr, &memo));
+            EXPECT_EQ(again, light);
+            EXPECT_EQ(againProbability, probability);
         }
         // As often as the probabilities say (4096 stratified numbers).
         EXPECT_NEAR(found / 4096.0, sum, 0.005);

@@ -93,11 +93,12 @@ LightSample Lights::sample(float uSelect, glm::vec2 uPoint, float* uRemapped) co
     return pointOn(i, distribution_.pdf(i), uPoint);
 }
 
-LightSample Lights::sampleAt(glm::vec3 p, glm::vec3 n, float uSelect, glm::vec2 uPoint) const {
+LightSample Lights::sampleAt(glm::vec3 p, glm::vec3 n, float uSelect, glm::vec2 uPoint,
+                             LightTree::Memo* memo) const {
     if (!choosesPerPoint()) return sample(uSelect, uPoint);
     std::uint32_t i = 0;
     float selection = 0;
-    if (!tree_.sample(p, n, uSelect, i, selection)) return {};
+    if (!tree_.sample(p, n, uSelect, i, selection, nullptr, memo)) return {};
     return pointOn(i, selection, uPoint);
 }
 

@@ -49,7 +49,9 @@ class Lights {
 
     /// The same for light arriving at p (unit normal n, front side only): by the tree when
     /// choosesPerPoint(), else as sample().
-    LightSample sampleAt(glm::vec3 p, glm::vec3 n, float uSelect, glm::vec2 uPoint) const;
+    /// `memo` (for several samples at one p and n) saves weighing the tree's nodes again.
+    LightSample sampleAt(glm::vec3 p, glm::vec3 n, float uSelect, glm::vec2 uPoint,
+                         LightTree::Memo* memo = nullptr) const;
 
     /// Area-measure density with which sample() picks a point on the emissive triangle
     /// (mesh, triangle), for multiple importance sampling; 0 if it is not a light.

@@ -329,6 +329,18 @@ def share(meta):
         return 0.0
 
 
+def generated_block(doc, key):
+    """The body of the document's <!-- BEGIN GENERATED key --> block, if it has one."""
+    try:
+        with open(doc, encoding="utf-8") as f:
+            text = f.read()
+    except OSError:
+        return None
+    m = re.search(rf"<!-- BEGIN GENERATED {re.escape(key)} -->\n(.*?)\n?<!-- END GENERATED "
+                  rf"{re.escape(key)} -->", text, re.S)
+    return m.group(1) if m else None
+
+
 def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_dir):
     rel_perf = os.path.relpath(perf_dir, os.path.dirname(os.path.abspath(doc)))
     quick = meta.get("quick") == "1"
@@ -722,6 +734,22 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
       "each sends 1/N of it, so the last column is the rate that one client alone could feed."
       + (f" For comparison, the master composites at most about {fmt(ceil_fps, 0)} fps at "
          f"640 x 480 here (section 4)." if ceil_fps else ""))
+    w("")
+
+    # Section 6 comes from its own script; its block is carried over from the current document.
+    w("## 6. Many lights: light samples by power or by a light tree")
+    w("")
+    w("`scripts/bench_many_lights.sh` (its own script: about 25 minutes the first time) renders "
+      "the interior lit by 96 small ceiling lights (`scenes/interior/diffuse.json`, "
+      "`glossy.json`, and `sculptures.json`, the same room with 133,000 triangles of ceramic "
+      "pieces) with IGI and with our path tracer, each point's light samples chosen by power "
+      "(`--light-sampling power`, the paper's) or by the light tree (`tree`, client/LightTree.h; "
+      "`auto` picks it from 8 emitters on), and compares each image with a path-traced "
+      "reference. `igi-tree-1` is the tree with one direct sample per pixel instead of 4.")
+    w("")
+    w("<!-- BEGIN GENERATED many-lights -->")
+    w(generated_block(doc, "many-lights") or "Not measured yet: run scripts/bench_many_lights.sh.")
+    w("<!-- END GENERATED many-lights -->")
     w("")
 
     w("## What is not measured here")
