@@ -30,4 +30,4 @@ bench_build python3-matplotlib
 cd "$root"
 # Debian's Python: matplotlib comes from python3-matplotlib, not from a pyenv python3 on PATH.
 exec /usr/bin/python3 "$root/scripts/many_lights_report.py" --build "$build" \
-  --command "scripts/bench_many_lights.sh $*" "$@"
+  --command "scripts/bench_many_lights.sh${*:+ $*}" "$@"

@@ -122,22 +122,22 @@ def interpolate(points, x):
 
 
 def time_to_reach(points, target):
-    """Time at which the log-log curve through points [(seconds, relMSE)] reaches `target`; and
-    whether that needed extrapolation past the last point."""
+    """Time at which the log-log curve through points [(seconds, relMSE)] reaches `target`, and a
+    note: "extrapolated" past the last point, "at most" when the first point is already below."""
     pts = [(math.log(a), math.log(b)) for a, b in points if a > 0 and b > 0]
     if not pts:
-        return None, False
+        return None, "never"
     lt = math.log(target)
     if pts[0][1] <= lt:
-        return math.exp(pts[0][0]), False
+        return math.exp(pts[0][0]), "at most"  # reached by the first measurement already
     for i in range(len(pts) - 1):
         (x0, y0), (x1, y1) = pts[i], pts[i + 1]
         if y1 <= lt or i == len(pts) - 2:
             if y1 == y0:
-                return None, True
+                return None, "never"
             t = (lt - y0) / (y1 - y0)
-            return math.exp(x0 + t * (x1 - x0)), y1 > lt
-    return None, True
+            return math.exp(x0 + t * (x1 - x0)), "extrapolated" if y1 > lt else ""
+    return None, "never"
 
 
 def measure(args):
@@ -172,25 +172,28 @@ def measure(args):
 
 
 def summarize(results):
+    """Each variant against power sampling with the same integrator: IGI's at 16 frames, the
+    path tracer's at its longest run (in a --quick run, power's longest run up to 16 frames)."""
     summary = {}
     for name, variants in results.items():
         s = {}
-        power = variants.get("igi-power")
-        if not power:
-            continue
-        # Power at 16 frames (in a --quick run, its longest run).
-        p16 = max((r for r in power if r["frames"] <= 16), key=lambda r: r["frames"])
-        s["power_anchor"] = {"frames": p16["frames"], "seconds": p16["seconds"],
-                             "relmse": p16["relmse"]}
         for v, rows in variants.items():
+            integrator = v.split("-")[0]
+            power = variants.get(f"{integrator}-power")
+            if not power:
+                continue
+            anchor = max((r for r in power if r["frames"] <= 16), key=lambda r: r["frames"])
             pts = sorted((r["seconds"], r["relmse"]) for r in rows)
             one = next((r for r in rows if r["frames"] == 1), None)
-            at = interpolate(pts, p16["seconds"])
-            reach, extrapolated = time_to_reach(pts, p16["relmse"])
-            s[v] = {"relmse_at_power16_time": at,
-                    "error_ratio_power_over_this": p16["relmse"] / at if at else None,
-                    "seconds_to_power16_error": reach, "extrapolated": extrapolated,
-                    "speedup_at_power16_error": p16["seconds"] / reach if reach else None,
+            at = interpolate(pts, anchor["seconds"])
+            reach, extrapolated = time_to_reach(pts, anchor["relmse"])
+            s[v] = {"anchor": f"{integrator}-power, {anchor['frames']} frames",
+                    "anchor_seconds": anchor["seconds"], "anchor_relmse": anchor["relmse"],
+                    "relmse_at_anchor_time": at,
+                    "error_ratio_power_over_this": anchor["relmse"] / at if at else None,
+                    "seconds_to_anchor_error": reach, "extrapolated": extrapolated,
+                    # A lower bound when the time is an upper one ("at most").
+                    "speedup_at_anchor_error": anchor["seconds"] / reach if reach else None,
                     "speckle_1": one["speckle"] if one else None,
                     "seconds_per_frame_1": one["seconds"] if one else None}
         summary[name] = s
@@ -242,22 +245,24 @@ def markdown(args, results, summary, env, wall):
                 lines.append(f"| {name} | {v} | {r['frames']} | {r['seconds']:.3f} | "
                              f"{num(r['relmse'])} | {r['bias'] * 100:+.2f} % | {r['ssim']:.3f} | "
                              f"{num(r['speckle'])} |")
-    lines += ["", "**At equal time and equal error**, against IGI with power sampling at 16 "
-              "frames (its time and its relMSE):", "",
-              "| scene | variant | relMSE at power's 16-frame time | power's relMSE / this | "
-              "time to power's 16-frame relMSE | speed-up | speckle after 1 frame |",
-              "|---|---|---:|---:|---:|---:|---:|"]
+    lines += ["", "**At equal time and equal error**, each variant against power sampling with "
+              "the same integrator (IGI: power's 16 frames; the path tracer: power's 4 frames of "
+              "16 spp): its relMSE at power's time, and the time it needs for power's relMSE "
+              "(log-log interpolation between the measured points):", "",
+              "| scene | variant | against | relMSE at that time | power's relMSE / this | "
+              "time to power's relMSE | speed-up | speckle after 1 frame |",
+              "|---|---|---|---:|---:|---:|---:|---:|"]
     for name, s in summary.items():
         for v in results[name]:
             if v not in s:
                 continue
             r = s[v]
-            reach = num(r["seconds_to_power16_error"]) + (" (extrapolated)" if r["extrapolated"]
-                                                          and r["seconds_to_power16_error"]
-                                                          else "")
-            lines.append(f"| {name} | {v} | {num(r['relmse_at_power16_time'])} | "
-                         f"{num(r['error_ratio_power_over_this'])} | {reach} s | "
-                         f"{num(r['speedup_at_power16_error'])} | {num(r['speckle_1'])} |")
+            reach = (num(r["seconds_to_anchor_error"]) + " s"
+                     + (f" ({r['extrapolated']})" if r["extrapolated"] else ""))
+            lines.append(f"| {name} | {v} | {r['anchor']} ({r['anchor_seconds']:.2f} s, "
+                         f"{num(r['anchor_relmse'])}) | {num(r['relmse_at_anchor_time'])} | "
+                         f"{num(r['error_ratio_power_over_this'])} | {reach} | "
+                         f"{num(r['speedup_at_anchor_error'])} | {num(r['speckle_1'])} |")
     lines += ["", "![relMSE against time, per scene and variant](perf/many-lights.png)"]
     return "\n".join(lines)
 
@@ -276,6 +281,8 @@ def main():
     ap.add_argument("--height", type=int, default=240)
     ap.add_argument("--command", default="scripts/bench_many_lights.sh")
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--replot", default="",
+                    help="write the documents again from this results.json, rendering nothing")
     args = ap.parse_args()
     args.scenes = [s for s in args.scenes.split(",") if s]
     args.variants = [v for v in args.variants.split(",") if v]
@@ -293,22 +300,32 @@ def main():
             v[2][:] = [f for f in v[2] if f <= 4]
         args.out = args.out.rstrip("/") + "-quick"
         args.docs = ""
-    env = machine()
-    t0 = time.time()
-    results = measure(args)
+    if args.replot:
+        # The documents again from a run's results.json (its machine, time and build kept).
+        with open(args.replot, encoding="utf-8") as f:
+            saved = json.load(f)
+        env, results, wall = saved["machine"], saved["results"], saved.get("wall_seconds", 0)
+        args.command, args.build_identity = saved.get("command", args.command), saved.get("build")
+    else:
+        env = machine()
+        t0 = time.time()
+        results = measure(args)
+        wall = time.time() - t0
+        args.build_identity = build_identity()
     summary = summarize(results)
-    wall = time.time() - t0
     os.makedirs(args.out, exist_ok=True)
     with open(os.path.join(args.out, "results.json"), "w", encoding="utf-8") as f:
-        json.dump({"machine": env, "results": results, "summary": summary}, f, indent=1)
+        json.dump({"machine": env, "command": args.command, "build": args.build_identity,
+                   "wall_seconds": wall, "results": results, "summary": summary}, f, indent=1)
     text = markdown(args, results, summary, env, wall)
     print(text)
     if args.docs:
         perf = os.path.join(args.docs, "perf")
         os.makedirs(perf, exist_ok=True)
         with open(os.path.join(perf, "many-lights.json"), "w", encoding="utf-8") as f:
-            json.dump({"machine": env, "command": args.command, "results": results,
-                       "summary": summary}, f, indent=1)
+            json.dump({"machine": env, "command": args.command, "build": args.build_identity,
+                       "wall_seconds": wall, "results": results, "summary": summary}, f,
+                      indent=1)
         plot(results, os.path.join(perf, "many-lights.png"))
         splice(os.path.join(args.docs, "PERFORMANCE.md"), {"many-lights": text}, log)
 
