@@ -112,7 +112,8 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
     set.minDistance2 = minDistance_ * minDistance_;
     // The sharpness budget needs something to restore what it removes: without compensation a
     // glossy lobe is left whole (it is not singular, only noisy).
-    if (compensate) set.sharpnessBudget = settings_.glossyBound;
+    if (compensate)
+        set.sharpnessBudget = accumulating ? settings_.glossyBound : kFirstFrameSharpnessBudget;
     if (compensate && accumulating)
         set.minDistance2 *= kAccumulatedClampScale * kAccumulatedClampScale;
     if (settings_.clampCompensation == ClampCompensation::Shrink) {
