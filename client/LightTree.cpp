@@ -225,7 +225,7 @@ void LightTree::importance(const Node& node, glm::vec3 p, glm::vec3 n, float out
 }
 
 bool LightTree::sample(glm::vec3 p, glm::vec3 n, float u, std::uint32_t& light, float& probability,
-                       float* uRemapped, Memo* memo) const {
+                       Memo* memo) const {
     if (empty()) return false;
     std::uint32_t index = 0;
     float prob = 1;
@@ -259,7 +259,6 @@ bool LightTree::sample(glm::vec3 p, glm::vec3 n, float u, std::uint32_t& light, 
         index = node.child[i];
     }
     probability = prob;
-    if (uRemapped) *uRemapped = u;
     return prob > 0;
 }
 

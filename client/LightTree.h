@@ -60,10 +60,9 @@ class LightTree {
 
     /// Chooses a light for the point p with unit normal n (only its front side receives; a zero
     /// n receives from everywhere) with u in [0, 1). False when no light can reach the point.
-    /// `uRemapped`, if given, receives u rescaled within the choice: a fresh uniform number.
     /// `memo`, if given, must have been used for this p and n only; the choice is the same.
     bool sample(glm::vec3 p, glm::vec3 n, float u, std::uint32_t& light, float& probability,
-                float* uRemapped = nullptr, Memo* memo = nullptr) const;
+                Memo* memo = nullptr) const;
 
     /// The probability with which sample() chooses `light` for p and n.
     float probability(glm::vec3 p, glm::vec3 n, std::uint32_t light) const;

@@ -77,8 +77,8 @@ TEST(LightTree, ProbabilitiesSumToOneAndAgreeWithSampling) {
             // A memo of earlier walks at the same point changes nothing.
             std::uint32_t again = 0;
             float againProbability = 0;
-            ASSERT_TRUE(tree.sample(r.p, r.n, (float(j) + 0.5f) / 4096.0f, again, againProbability,
-                                    nullptr, &memo));
+            ASSERT_TRUE(
+                tree.sample(r.p, r.n, (float(j) + 0.5f) / 4096.0f, again, againProbability, &memo));
             EXPECT_EQ(again, light);
             EXPECT_EQ(againProbability, probability);
         }

@@ -98,7 +98,7 @@ LightSample Lights::sampleAt(glm::vec3 p, glm::vec3 n, float uSelect, glm::vec2 
     if (!choosesPerPoint()) return sample(uSelect, uPoint);
     std::uint32_t i = 0;
     float selection = 0;
-    if (!tree_.sample(p, n, uSelect, i, selection, nullptr, memo)) return {};
+    if (!tree_.sample(p, n, uSelect, i, selection, memo)) return {};
     return pointOn(i, selection, uPoint);
 }
 
@@ -119,21 +119,12 @@ LightSample Lights::pointOn(std::size_t i, float select, glm::vec2 uPoint) const
     return s;
 }
 
-float Lights::areaPdf(std::uint32_t mesh, std::uint32_t triangle) const {
-    return areaPdfWith(mesh, triangle, glm::vec3(0.0f), glm::vec3(0.0f), false);
-}
-
 float Lights::areaPdfAt(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p,
                         glm::vec3 n) const {
-    return areaPdfWith(mesh, triangle, p, n, choosesPerPoint());
-}
-
-float Lights::areaPdfWith(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p, glm::vec3 n,
-                          bool atPoint) const {
     const auto it = triangleToEmitter_.find(triangleKey(mesh, triangle));
     if (it == triangleToEmitter_.end()) return 0;
     const float selection =
-        atPoint ? tree_.probability(p, n, it->second) : distribution_.pdf(it->second);
+        choosesPerPoint() ? tree_.probability(p, n, it->second) : distribution_.pdf(it->second);
     return selection / emitters_[it->second].area;
 }
 

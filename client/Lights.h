@@ -53,11 +53,8 @@ class Lights {
     LightSample sampleAt(glm::vec3 p, glm::vec3 n, float uSelect, glm::vec2 uPoint,
                          LightTree::Memo* memo = nullptr) const;
 
-    /// Area-measure density with which sample() picks a point on the emissive triangle
+    /// Area-measure density with which sampleAt(p, n) picks a point on the emissive triangle
     /// (mesh, triangle), for multiple importance sampling; 0 if it is not a light.
-    float areaPdf(std::uint32_t mesh, std::uint32_t triangle) const;
-
-    /// The same for sampleAt(p, n).
     float areaPdfAt(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p, glm::vec3 n) const;
 
     /// Total emitted power, summed luminance (for tests and statistics).
@@ -73,8 +70,6 @@ class Lights {
     };
 
     LightSample pointOn(std::size_t emitter, float selection, glm::vec2 uPoint) const;
-    float areaPdfWith(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p, glm::vec3 n,
-                      bool atPoint) const;
 
     std::vector<Emitter> emitters_;
     Distribution1D distribution_;
