@@ -37,20 +37,37 @@ void FrameCompositor::forRowBlocks(F&& f) {
 }
 
 const Image& FrameCompositor::composite(const FrameBuffer& frame) {
+    // One sweep per block of rows: each row is filtered, added to the accumulation and, as
+    // soon as the rows its mean reads are in, averaged, all while it is still in the cache.
+    // A mean that reads a row of another block waits for the second sweep.
+    const int after = accumulator_.frames() + 1;  // frames once this one is added
     forRowBlocks([&](int begin, int end) {
-        discontinuityFilterRows(frame, filter_, begin, end, filtered_.pixels);
-    });
-    if (!accumulate_) return filtered_;
-    forRowBlocks([&](int begin, int end) {
-        if (accumulator_.withdrawsBlur()) {
-            compositeUnfilteredRows(frame, begin, end, unfiltered_.pixels);
-            accumulator_.addRows(filtered_.pixels, unfiltered_.pixels, begin, end);
-        } else {
-            accumulator_.addRows(filtered_.pixels, begin, end);
+        DiscontinuityRowFilter filter(frame, filter_);
+        int next = begin;  // the first row whose mean is neither written nor left for later
+        for (int y = begin; y < end; ++y) {
+            filter.filterRow(y, filtered_.pixels);
+            if (!accumulate_) continue;
+            if (accumulator_.withdrawsBlur()) {
+                compositeUnfilteredRows(frame, y, y + 1, unfiltered_.pixels);
+                accumulator_.addRows(filtered_.pixels, unfiltered_.pixels, y, y + 1);
+            } else {
+                accumulator_.addRows(filtered_.pixels, y, y + 1);
+            }
+            for (; next <= y; ++next) {
+                const auto [first, last] = accumulator_.meanWindow(next);
+                if (last > y + 1) break;  // reads rows not added yet
+                if (first >= begin) accumulator_.meanRows(shown_.pixels, next, next + 1, after);
+            }
         }
     });
+    if (!accumulate_) return filtered_;
     accumulator_.endFrame();
-    forRowBlocks([&](int begin, int end) { accumulator_.meanRows(shown_.pixels, begin, end); });
+    forRowBlocks([&](int begin, int end) {
+        for (int y = begin; y < end; ++y) {
+            const auto [first, last] = accumulator_.meanWindow(y);
+            if (first < begin || last > end) accumulator_.meanRows(shown_.pixels, y, y + 1);
+        }
+    });
     return shown_;
 }
 

@@ -279,7 +279,11 @@ void Master::openFramesAsNeeded() {
         }
         scheduler_->openFrame(f);
         auto record = std::make_unique<FrameRecord>();
-        record->buffer.reset(scene_.image.width, scene_.image.height);
+        if (!spareBuffers_.empty()) {
+            record->buffer = std::move(spareBuffers_.back());
+            spareBuffers_.pop_back();
+        }
+        record->buffer.reuse(scene_.image.width, scene_.image.height);
         record->opened = Clock::now();
         record->epoch = start.epoch;
         // Accumulation restarts with every epoch (finishReadyFrames), so a frame's place in
@@ -432,6 +436,7 @@ void Master::onComposited(std::uint32_t f, double seconds) {
     writeFrameImages(f);
     scheduler_->closeFrame(f);
     timeline_->endFrame(f);
+    spareBuffers_.push_back(std::move(frames_.at(f)->buffer));
     frames_.erase(f);
     ++nextFrameToFinish_;
     if (!framesLeft(nextFrameToFinish_)) {

@@ -129,6 +129,9 @@ class Master {
     LocalClients localClients_;
     std::map<ClientId, Session> sessions_;
     std::map<std::uint32_t, std::unique_ptr<FrameRecord>> frames_;
+    /// Buffers of composited frames, for the frames to come: a fresh one would cost the master
+    /// its page faults and clearing every frame (FrameBuffer::reuse).
+    std::vector<FrameBuffer> spareBuffers_;
     bool compositing_ = false;
     ClientId nextClientId_ = 1;
     std::uint32_t nextFrameToOpen_ = 0;

@@ -129,6 +129,7 @@ if ((quick)); then
   fps_frames=4
   scale_counts=(1 2 4) scale_width=320 scale_height=240
   ceiling_runs=("2 640 480 24")
+  stage_frames=4
   codec_rounds=2 codec_seconds=0.2
 else
   bench_frames=4 bench_segments=4000000 bench_repeats=3
@@ -136,6 +137,7 @@ else
   scale_counts=(1 2 4 8 16) scale_width=640 scale_height=480
   # master threads, width, height, frames
   ceiling_runs=("1 640 480 80" "2 640 480 80" "1 1280 960 30" "2 1280 960 30")
+  stage_frames=30
   codec_rounds=5 codec_seconds=0.4
 fi
 # Each scaling client is capped at 1/16 of a core: 16 clients take one of the two cores,
@@ -301,6 +303,15 @@ for run in "${ceiling_runs[@]}"; do
     "$bin/igi-master" --scene "${scene_files[0]}" --local-clients 2 --client-threads 1 \
     --replay-clients --threads "$threads" --frames "$frames" --width "$w" --height "$h" \
     "${paper[@]}" --stats-json "$raw/ceiling/t$threads-${w}x$h.json"
+done
+
+# The same work without clients or network: igi-composite-bench times each stage on one
+# thread, on a synthetic frame shaped like the default scene's.
+for res in "640 480" "1280 960"; do
+  read -r w h <<<"$res"
+  say "igi-composite-bench ${w}x$h"
+  run_logged "$raw/ceiling/stages-${w}x$h.txt" 300 \
+    "$bin/igi-composite-bench" --width "$w" --height "$h" --frames "$stage_frames" --rounds 3
 done
 
 # ---------------------------------------------------------------------------------------------

@@ -155,6 +155,20 @@ def parse_cgroup_stats(path):
             "throttled_share": throttled / periods if periods else None}
 
 
+def parse_stages(path):
+    """igi-composite-bench's output: ns/pixel by stage and the ceiling."""
+    text = open(path).read()
+    m = re.search(r"(\d+) x (\d+), (\d+) frames", text)
+    if not m:
+        return None
+    out = {"width": int(m[1]), "height": int(m[2]), "frames": int(m[3]), "ns": {}}
+    for name, ns in re.findall(r"^(.+?)\s+([\d.]+) ns/pixel$", text, re.M):
+        out["ns"][name.strip()] = float(ns)
+    m = re.search(r"master ceiling: ([\d.]+) M pixels/s", text)
+    out["mpx"] = float(m[1]) if m else None
+    return out
+
+
 def parse_codec(path):
     text = open(path).read()
     out = {"text": text.strip()}
@@ -264,6 +278,9 @@ def main():
         ceiling.append(entry)
     ceiling.sort(key=lambda c: (c["width"], c["threads"]))
     results["ceiling"] = ceiling
+    stages = [parse_stages(p) for p in sorted(glob.glob(os.path.join(raw, "ceiling", "stages-*.txt")))]
+    stages = sorted((st for st in stages if st), key=lambda st: st["width"])
+    results["ceiling_stages"] = stages
 
     # 5. codec
     codec_path = os.path.join(raw, "codec", "codec.txt")
@@ -275,7 +292,7 @@ def main():
 
     plot = make_plot(scaling, meta, os.path.join(perf_dir, "scaling.png"))
     with open(doc, "w") as f:
-        f.write(render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_dir))
+        f.write(render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_dir, stages))
     print(f"wrote {doc} and {perf_dir}/", file=sys.stderr)
 
 
@@ -341,7 +358,7 @@ def generated_block(doc, key):
     return m.group(1) if m else None
 
 
-def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_dir):
+def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_dir, stages=()):
     rel_perf = os.path.relpath(perf_dir, os.path.dirname(os.path.abspath(doc)))
     quick = meta.get("quick") == "1"
     L = []
@@ -661,6 +678,20 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
           "users, so this is not the master's own scaling; on a free machine with more cores "
           "the decode (per tile, on the pool) and the filter would spread over the threads.")
         w("")
+    if stages:
+        w("**The same work by stage, without clients or network**: `igi-composite-bench --width W "
+          "--height H --frames F --rounds 3` decodes the tiles of a synthetic frame shaped like "
+          "the default scene's (walls, a sphere, 3 x 3 interleaved noisy irradiance, a mirror's "
+          "unfiltered radiance), scatters them, and filters, accumulates and averages, all on one "
+          "thread, with accumulation and the progressive filter on; the fastest of three rounds. "
+          "Nothing else runs in its process, so this is the master's own per-pixel cost; the "
+          "replay ceiling above adds receiving, scheduling and the clients sharing the cores.")
+        w("")
+        names = list(stages[0]["ns"].keys())
+        w(table(["image"] + [f"{n} (ns / pixel)" for n in names] + ["M pixels/s on one thread"],
+                [[f"{st['width']} x {st['height']}"] + [fmt(st["ns"].get(n), 1) for n in names]
+                 + [fmt(st["mpx"], 1)] for st in stages]))
+        w("")
     w(f"Paper: the server topped out near {PAPER_CEILING_MPX} M pixels/s, about 5 fps at "
       "640 x 480.")
     w("")
@@ -669,8 +700,8 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
     w("## 5. Bytes on the wire")
     w("")
     w("Per pixel, each plane is quantized before zstd (level 1) compresses the tile "
-      "(docs/PROTOCOL.md, \"Channels\"); as 32-bit floats a pixel of all five planes would be "
-      "13 floats = 52 bytes:")
+      "(docs/PROTOCOL.md, \"Channels\"); as 32-bit floats a pixel of all six planes would be "
+      "16 floats = 64 bytes:")
     w("")
     w(table(["plane", "as floats", "quantized (before zstd)"], [
         ["irradiance (RGB)", 12, "4 (shared-exponent RGB)"],
@@ -678,12 +709,14 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
         ["normal", 12, "2 (octahedral u8 x 2)"],
         ["depth", 4, "2 (log u16)"],
         ["unfiltered (RGB, mirrors/glass/caustics)", 12, "4 (shared-exponent RGB); left out when zero in the whole tile"],
-        ["**all five**", "**52**", "**15**"],
+        ["glossy (RGB, the Phong lobe's radiance)", 12, "4 (shared-exponent RGB); left out when zero in the whole tile (every tile of a scene without glossy materials)"],
+        ["**all six**", "**64**", "**19**"],
     ]))
     w("")
     if codec:
         w("`igi-codec-bench --rounds %s` (section 5 of the script), on its synthetic typical "
-          "32 x 32 tile with all five planes (modelled on the default scene's tiles):"
+          "32 x 32 tile with the five planes of a diffuse scene (modelled on the default scene's "
+          "tiles, which have no glossy plane):"
           % ("5" if not quick else "2"))
         w("")
         w("```")

@@ -1,8 +1,8 @@
 #pragma once
 
 // Four floats computed lane by lane: SSE where the compiler targets it (every x86-64), plain
-// arrays elsewhere. Only what the light tree needs; every operation is IEEE-exact per lane (no
-// approximate reciprocals), so both versions give the same bits.
+// arrays elsewhere. Only what the light tree and the discontinuity buffer need; every operation is
+// IEEE-exact per lane (no approximate reciprocals), so both versions give the same bits.
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #else
@@ -48,6 +48,16 @@ inline Float4 greater(Float4 a, Float4 b) {
 }
 inline Float4 lessEqual(Float4 a, Float4 b) {
     return Float4(_mm_cmple_ps(a.v, b.v));
+}
+/// !(a > b) and !(a < b): true where either is NaN, as the negated scalar test would be.
+inline Float4 notGreater(Float4 a, Float4 b) {
+    return Float4(_mm_cmpngt_ps(a.v, b.v));
+}
+inline Float4 notLess(Float4 a, Float4 b) {
+    return Float4(_mm_cmpnlt_ps(a.v, b.v));
+}
+inline Float4 abs(Float4 a) {
+    return Float4(_mm_andnot_ps(_mm_set1_ps(-0.0f), a.v));
 }
 inline Float4 operator&(Float4 a, Float4 b) {
     return Float4(_mm_and_ps(a.v, b.v));
@@ -105,6 +115,15 @@ inline Float4 greater(Float4 a, Float4 b) {
 }
 inline Float4 lessEqual(Float4 a, Float4 b) {
     return Float4::map([&](int i) { return a.v[i] <= b.v[i] ? 1.0f : 0.0f; });
+}
+inline Float4 notGreater(Float4 a, Float4 b) {
+    return Float4::map([&](int i) { return !(a.v[i] > b.v[i]) ? 1.0f : 0.0f; });
+}
+inline Float4 notLess(Float4 a, Float4 b) {
+    return Float4::map([&](int i) { return !(a.v[i] < b.v[i]) ? 1.0f : 0.0f; });
+}
+inline Float4 abs(Float4 a) {
+    return Float4::map([&](int i) { return std::fabs(a.v[i]); });
 }
 inline Float4 operator&(Float4 a, Float4 b) {
     return Float4::map([&](int i) { return a.v[i] != 0 && b.v[i] != 0 ? 1.0f : 0.0f; });

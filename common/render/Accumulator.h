@@ -1,5 +1,6 @@
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -50,15 +51,23 @@ class Accumulator {
                  int rowBegin, int rowEnd);
     void endFrame() { ++frames_; }
     /// The mean of the frames added so far, for rows [rowBegin, rowEnd).
-    void meanRows(std::vector<glm::vec3>& out, int rowBegin, int rowEnd) const;
+    void meanRows(std::vector<glm::vec3>& out, int rowBegin, int rowEnd) const {
+        meanRows(out, rowBegin, rowEnd, frames_);
+    }
+    /// The same after `frames` frames: frames() + 1 gives, before endFrame(), the mean the
+    /// frame being added leads to, for rows whose window rows (meanWindow) are all added
+    /// already. A compositor that writes the mean in the same sweep as it adds the rows reads
+    /// them while they are still in the cache.
+    void meanRows(std::vector<glm::vec3>& out, int rowBegin, int rowEnd, int frames) const;
+    /// The rows [first, second) that row y's mean reads.
+    std::pair<int, int> meanWindow(int y) const;
     int frames() const { return frames_; }
     bool withdrawsBlur() const { return withdrawBlur_; }
 
   private:
-    /// The variance of pixel p's mean difference over `frames` frames, from them alone.
-    double ownVariance(std::size_t p, int frames) const;
-    /// The mean of variance_ over pixel (x, y)'s window.
-    double windowVariance(int x, int y) const;
+    /// The variance of pixel p's mean difference over its n frames, from them alone, given
+    /// inv = 1 / n and invDegrees = 1 / (n - 1) (0 for n = 1).
+    double ownVariance(std::size_t p, double inv, double invDegrees) const;
 
     int width_ = 0;
     int height_ = 0;

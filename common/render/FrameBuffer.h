@@ -1,5 +1,7 @@
 #pragma once
 
+#include <atomic>
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -21,10 +23,33 @@ struct FrameBuffer {
     std::vector<glm::vec3> unfiltered;
     std::vector<glm::vec3> glossy;
 
-    /// Sizes every plane for width x height and clears it (depth +inf: no surface).
+    /// Channel bits of the planes that may hold something other than their empty value (zero;
+    /// depth +inf). A plane whose bit is clear is empty everywhere, so the filter need not read
+    /// it: a diffuse scene's glossy plane, a scene without mirrors' unfiltered one.
+    struct LiveMask {
+        std::atomic<std::uint32_t> bits{kAllChannels};
+        LiveMask() = default;
+        LiveMask(const LiveMask& o) : bits(o.bits.load()) {}
+        LiveMask& operator=(const LiveMask& o) {
+            bits = o.bits.load();
+            return *this;
+        }
+        bool has(Channel c) const { return (bits.load(std::memory_order_relaxed) & c) != 0; }
+    } live;
+
+    /// Sizes every plane for width x height and clears it (depth +inf: no surface). Every plane
+    /// counts as live: the caller may fill them directly.
     void reset(int w, int h);
 
-    /// Copies a tile's pixels to their places. Planes the tile did not send are zero.
+    /// Makes the buffer ready for a frame of which every pixel will be scattered (the master's
+    /// frames: a frame is composited only once all its tiles are in). Memory of the same size
+    /// is kept as it is, without clearing: each pixel is overwritten by its tile, and clearing
+    /// 76 bytes a pixel every frame costs the master more than filtering them. Planes no tile
+    /// has sent stay empty and are neither written nor read.
+    void reuse(int w, int h);
+
+    /// Copies a tile's pixels to their places. Planes the tile did not send are empty there.
+    /// Tiles of one frame may be scattered from several threads at once.
     void scatter(const Tile& tile, int n, int m, const TileChannels& channels);
 };
 
