@@ -291,8 +291,11 @@ def main():
         json.dump(results, f, indent=1, sort_keys=True)
 
     plot = make_plot(scaling, meta, os.path.join(perf_dir, "scaling.png"))
+    # Rendered before the file is opened for writing: render_doc keeps the blocks other scripts
+    # generate (section 6) by reading them from the document it replaces.
+    text = render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_dir, stages)
     with open(doc, "w") as f:
-        f.write(render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_dir, stages))
+        f.write(text)
     print(f"wrote {doc} and {perf_dir}/", file=sys.stderr)
 
 
