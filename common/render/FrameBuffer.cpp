@@ -7,23 +7,18 @@ namespace {
 
 constexpr float kNoDepth = std::numeric_limits<float>::infinity();
 
-template <typename T>
-void allocate(std::vector<T>& plane, std::size_t n, T empty) {
-    plane.assign(n, empty);
-}
-
 }  // namespace
 
 void FrameBuffer::reset(int w, int h) {
     width = w;
     height = h;
     const std::size_t n = std::size_t(w) * std::size_t(h);
-    allocate(irradiance, n, glm::vec3(0.0f));
-    allocate(reflectance, n, glm::vec3(0.0f));
-    allocate(normal, n, glm::vec3(0.0f));
-    allocate(depth, n, kNoDepth);
-    allocate(unfiltered, n, glm::vec3(0.0f));
-    allocate(glossy, n, glm::vec3(0.0f));
+    irradiance.assign(n, glm::vec3(0.0f));
+    reflectance.assign(n, glm::vec3(0.0f));
+    normal.assign(n, glm::vec3(0.0f));
+    depth.assign(n, kNoDepth);
+    unfiltered.assign(n, glm::vec3(0.0f));
+    glossy.assign(n, glm::vec3(0.0f));
     live.bits = kAllChannels;
 }
 
