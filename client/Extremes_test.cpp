@@ -13,7 +13,7 @@
 
 #include <gtest/gtest.h>
 
-#include "CameraModel.h"
+#include "scene/CameraModel.h"
 #include "CausticShooter.h"
 #include "Codec.h"
 #include "IgiIntegrator.h"

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "CameraModel.h"
+#include "scene/CameraModel.h"
 #include "DeltaChain.h"
 #include "EndPointShader.h"
 #include "LightingSet.h"

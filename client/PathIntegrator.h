@@ -2,7 +2,7 @@
 
 #include <cstdint>
 
-#include "CameraModel.h"
+#include "scene/CameraModel.h"
 #include "Lights.h"
 #include "Scattering.h"
 #include "TraceableScene.h"

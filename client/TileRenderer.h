@@ -4,7 +4,7 @@
 #include <functional>
 #include <memory>
 
-#include "CameraModel.h"
+#include "scene/CameraModel.h"
 #include "IgiIntegrator.h"
 #include "LightingCache.h"
 #include "LightingMethod.h"

@@ -83,8 +83,9 @@ ControlRequest parseControlCommand(const std::string& line, const Scene& scene,
     const nlohmann::json json = parseJsonText(line, kControlCommandFile);
     const JsonNode command(json, kControlCommandFile, "");
     command.requireObject();
-    const std::string cmd = command.at("cmd").choice(
-        {"camera", "object", "light", "material", "status", "snapshot", "stop"});
+    const std::string cmd =
+        command.at("cmd").choice({"camera", "object", "light", "material", "status", "scene",
+                                  "pick", "exposure", "snapshot", "stop"});
 
     ControlRequest request;
     request.kind = ControlRequest::Kind::Change;
@@ -99,11 +100,26 @@ ControlRequest parseControlCommand(const std::string& line, const Scene& scene,
     } else if (cmd == "snapshot") {
         command.checkKeys({"cmd", "path"});
         request.kind = ControlRequest::Kind::Snapshot;
-        request.path = command.at("path").string();
-        if (request.path.empty()) command.at("path").fail("the path is empty");
+        if (auto path = command.find("path")) {
+            request.path = path->string();
+            if (request.path.empty()) path->fail("the path is empty");
+        }
+    } else if (cmd == "pick") {
+        command.checkKeys({"cmd", "x", "y"});
+        request.kind = ControlRequest::Kind::Pick;
+        const ImageSettings& image = scene.image;
+        request.x = command.at("x").real(NumberRange::closed(0, image.width));
+        request.y = command.at("y").real(NumberRange::closed(0, image.height));
+    } else if (cmd == "exposure") {
+        command.checkKeys({"cmd", "stops"});
+        request.kind = ControlRequest::Kind::Exposure;
+        request.exposure =
+            command.at("stops").real(NumberRange::closed(-kMaxExposureStops, kMaxExposureStops));
     } else {
         command.checkKeys({"cmd"});
-        request.kind = cmd == "status" ? ControlRequest::Kind::Status : ControlRequest::Kind::Stop;
+        request.kind = cmd == "status"  ? ControlRequest::Kind::Status
+                       : cmd == "scene" ? ControlRequest::Kind::Scene
+                                        : ControlRequest::Kind::Stop;
     }
     return request;
 }

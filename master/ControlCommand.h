@@ -11,10 +11,21 @@ namespace igi {
 
 /// One command received on the master's control port (docs/ANIMATION.md, "Control commands").
 struct ControlRequest {
-    enum class Kind { Change, Status, Snapshot, Stop } kind = Kind::Status;
+    /// Change: moves the scene (a new epoch). Status, Scene and Pick only ask: the session's
+    /// progress; the scene's objects, lights and camera; what is under an image position.
+    /// Exposure sets the display exposure of the view and of PNG images written from then on
+    /// (not a scene change: accumulation goes on).
+    enum class Kind { Change, Status, Scene, Pick, Exposure, Snapshot, Stop } kind = Kind::Status;
     std::vector<SceneChange> changes;  ///< for Change
-    std::string path;                  ///< for Snapshot: where to write the image
+    /// For Snapshot: where to write the image; empty: the master picks a new .exr name beside
+    /// its outputs (what the web view's save button asks for).
+    std::string path;
+    float x = 0, y = 0;  ///< for Pick: the image position, pixels from the top-left corner
+    float exposure = 0;  ///< for Exposure: stops
 };
+
+/// Exposures a command may set, in stops (beyond them an image is all black or all white).
+inline constexpr double kMaxExposureStops = 20;
 
 /// The file name that control-command errors give (SceneError::file()).
 inline constexpr const char* kControlCommandFile = "control command";

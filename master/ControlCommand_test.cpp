@@ -19,6 +19,8 @@ Scene testScene() {
     s.camera.position = {0, 1, 3.4f};
     s.camera.lookAt = {0, 1, 0};
     s.camera.fovYDeg = 40;
+    s.image.width = 160;
+    s.image.height = 120;
     for (const char* name : {"room", "glass_ball", "twin", "twin"}) {
         Mesh m;
         m.name = name;
@@ -153,6 +155,22 @@ TEST(ControlCommand, StatusSnapshotAndStop) {
     EXPECT_EQ(s.path, "out/now.png");
     EXPECT_TRUE(s.changes.empty());
     EXPECT_TRUE(parse(R"({"cmd":"stop"})").changes.empty());
+    // Without a path the master picks one (the web view's save button).
+    const ControlRequest unnamed = parse(R"({"cmd":"snapshot"})");
+    EXPECT_EQ(unnamed.kind, ControlRequest::Kind::Snapshot);
+    EXPECT_TRUE(unnamed.path.empty());
+}
+
+TEST(ControlCommand, SceneQueryPickAndExposure) {
+    EXPECT_EQ(parse(R"({"cmd":"scene"})").kind, ControlRequest::Kind::Scene);
+    const ControlRequest pick = parse(R"({"cmd":"pick","x":80.5,"y":12})");
+    EXPECT_EQ(pick.kind, ControlRequest::Kind::Pick);
+    EXPECT_EQ(pick.x, 80.5f);
+    EXPECT_EQ(pick.y, 12.0f);
+    EXPECT_TRUE(pick.changes.empty());
+    const ControlRequest exposure = parse(R"({"cmd":"exposure","stops":-1.5})");
+    EXPECT_EQ(exposure.kind, ControlRequest::Kind::Exposure);
+    EXPECT_EQ(exposure.exposure, -1.5f);
 }
 
 TEST(ControlCommand, BadCommandsAreClearErrors) {
@@ -164,7 +182,7 @@ TEST(ControlCommand, BadCommandsAreClearErrors) {
     const Case cases[] = {
         {R"({"cmd":"explode"})", "/cmd",
          "unknown value 'explode' (expected one of: camera, object, light, material, status, "
-         "snapshot, stop)"},
+         "scene, pick, exposure, snapshot, stop)"},
         {R"({"command":"status"})", "", "missing required key 'cmd'"},
         {R"([1,2])", "", "expected an object, got array"},
         {R"({"cmd":"camera","positon":[0,0,1]})", "/positon",
@@ -189,7 +207,12 @@ TEST(ControlCommand, BadCommandsAreClearErrors) {
         {R"({"cmd":"material","name":"red","diffuse":[0.5,-0.1,0]})", "/diffuse/1",
          "must be in [0, 1]"},
         {R"({"cmd":"material","name":"blue","diffuse":0.5})", "/name", "no material named 'blue'"},
-        {R"({"cmd":"snapshot"})", "", "missing required key 'path'"},
+        {R"({"cmd":"pick","x":10})", "", "missing required key 'y'"},
+        {R"({"cmd":"pick","x":-1,"y":0})", "/x", "must be in [0, 160]"},
+        {R"({"cmd":"pick","x":0,"y":121})", "/y", "must be in [0, 120]"},
+        {R"({"cmd":"exposure","stops":40})", "/stops", "must be in [-20, 20]"},
+        {R"({"cmd":"exposure"})", "", "missing required key 'stops'"},
+        {R"({"cmd":"scene","all":true})", "/all", "unknown key"},
         {R"({"cmd":"snapshot","path":""})", "/path", "the path is empty"},
         {R"({"cmd":"status","verbose":true})", "/verbose", "unknown key"},
     };

@@ -10,8 +10,11 @@
 
 #include "Codec.h"
 #include "ControlCommand.h"
+#include "ScenePick.h"
 #include "SequencePath.h"
+#include "ViewPage.h"
 #include "image/ImageIO.h"
+#include "image/JpegEncoder.h"
 #include "render/Tile.h"
 #include "scene/RenderSettingsJson.h"
 #include "scene/SceneError.h"
@@ -432,8 +435,12 @@ void Master::onComposited(std::uint32_t f, double seconds) {
     fs.accumulated = std::uint32_t(compositor_->accumulatedFrames());
     fs.shown = true;
     stats_.noteFrameDone(secondsSince(created_));
-    spdlog::info("{}", stats_.summaryLine(f));
+    // On a terminal the progress line says it; the frame lines are for logs and the curious.
+    spdlog::log(progress_ ? spdlog::level::debug : spdlog::level::info, "{}",
+                stats_.summaryLine(f));
+    if (progress_) progress_->update(int(f + 1), stats_.recentFps(), readyClients());
     writeFrameImages(f);
+    publishToView(f);
     scheduler_->closeFrame(f);
     timeline_->endFrame(f);
     spareBuffers_.push_back(std::move(frames_.at(f)->buffer));
@@ -511,6 +518,7 @@ void Master::endSession(int exitCode) {
     acceptor_.close(ignored);
     signals_.cancel(ignored);
     if (control_) control_->close();
+    if (view_) view_->close();
     for (auto& snapshot : std::exchange(snapshots_, {}))
         snapshot.reply(
             nlohmann::json{{"ok", false}, {"error", "the session ended before the next frame"}}
@@ -550,6 +558,7 @@ int Master::run() {
             });
         spdlog::info("control commands on {}:{}", options_.controlHost, control_->port());
     }
+    if (options_.view) startView();
     signals_.async_wait([this](const boost::system::error_code& ec, int signal) {
         if (ec) return;
         spdlog::warn("signal {}: ending the session after {} frames", signal, nextFrameToFinish_);
@@ -585,6 +594,7 @@ int Master::run() {
     io_.run();
     pool_.waitIdle();  // a frame being composited or written, when the session was stopped
     localClients_.stop(10.0);
+    if (progress_) progress_->finish();
     if (exitCode_ != 0) return exitCode_;
 
     const Image& image = compositor_->shown();
@@ -670,15 +680,24 @@ void Master::onControl(const std::string& line, ControlServer::Reply reply) {
             return reply(nlohmann::json{
                 {"ok", true}, {"changes", request.changes.size()}, {"from_frame", nextFrameToOpen_}}
                              .dump());
-        case ControlRequest::Kind::Status:
-            return reply(nlohmann::json{{"ok", true},
-                                        {"frames_done", nextFrameToFinish_},
-                                        {"epoch", timeline_->epoch()},
-                                        {"accumulated", compositor_->accumulatedFrames()},
-                                        {"clients", readyClients()},
-                                        {"fps", stats_.recentFps()}}
-                             .dump());
+        case ControlRequest::Kind::Status: {
+            nlohmann::json status = statusJson();
+            status["ok"] = true;
+            return reply(status.dump());
+        }
+        case ControlRequest::Kind::Scene: {
+            nlohmann::json scene = sceneJson();
+            scene["ok"] = true;
+            return reply(scene.dump());
+        }
+        case ControlRequest::Kind::Pick:
+            return reply(pickJson(request.x, request.y).dump());
+        case ControlRequest::Kind::Exposure:
+            // Display only: the frames, their accumulation and the EXR outputs do not change.
+            scene_.image.exposure = request.exposure;
+            return reply(nlohmann::json{{"ok", true}, {"exposure", request.exposure}}.dump());
         case ControlRequest::Kind::Snapshot:
+            if (request.path.empty()) request.path = defaultSnapshotPath();
             snapshots_.push_back({request.path, std::move(reply), nextFrameToOpen_});
             return;
         case ControlRequest::Kind::Stop:
@@ -722,6 +741,180 @@ void Master::setUpSecret() {
     // Local clients only: a fresh secret of this session, handed to them in their environment.
     localSecret_ = net::ClusterKey::randomSecret();
     key_ = net::ClusterKey::fromSecret(localSecret_);
+}
+
+}  // namespace igi
+
+namespace igi {
+namespace {
+
+nlohmann::json vec3Json(glm::vec3 v) {
+    return nlohmann::json::array({v.x, v.y, v.z});
+}
+
+nlohmann::json cameraJson(const Camera& c) {
+    return {{"position", vec3Json(c.position)},
+            {"look_at", vec3Json(c.lookAt)},
+            {"up", vec3Json(c.up)},
+            {"fov_y", c.fovYDeg}};
+}
+
+// What a user reads to know which estimator runs: the mode and the settings that set its cost.
+nlohmann::json settingsJson(const RenderSettings& s) {
+    if (s.integrator == IntegratorKind::Path)
+        return {{"integrator", "path"},
+                {"samples_per_pixel", s.pathSamples},
+                {"max_path_length", s.maxPathLength}};
+    const char* gi = s.gi == GiMode::Spt ? "spt" : s.gi == GiMode::Stream ? "stream" : "igi";
+    nlohmann::json j{{"integrator", "igi"},
+                     {"gi", gi},
+                     {"interleave", fmt::format("{}x{}", s.interleaveX, s.interleaveY)},
+                     {"direct_samples", s.directSamples},
+                     {"caustic_photons", s.causticPhotons},
+                     {"accumulate", s.accumulate},
+                     {"roulette", s.roulette}};
+    if (s.gi == GiMode::Igi) j["indirect_vpls"] = s.indirectVpls;
+    if (s.gi == GiMode::Spt) j["spt_groups"] = s.sptGroups, j["spt_budget"] = s.sptBudget;
+    if (s.gi == GiMode::Stream)
+        j["stream_vsls"] = s.streamVsls, j["stream_window"] = s.streamWindow;
+    return j;
+}
+
+}  // namespace
+
+nlohmann::json Master::statusJson() {
+    const Statistics::Rates& rates = stats_.sampleRates(secondsSince(created_));
+    nlohmann::json clients = nlohmann::json::array();
+    for (const auto& [id, s] : sessions_) {
+        if (!s.ready) continue;
+        const auto rays = rates.raysPerSecond.find(id);
+        const auto tiles = rates.tilesPerSecond.find(id);
+        clients.push_back(
+            {{"id", id},
+             {"host", s.host},
+             {"threads", s.threads},
+             {"tiles_per_s", tiles == rates.tilesPerSecond.end() ? 0.0 : tiles->second},
+             {"mrays_per_s", rays == rates.raysPerSecond.end() ? 0.0 : rays->second * 1e-6}});
+    }
+    return {{"frames_done", nextFrameToFinish_},
+            {"frames_total", options_.frames},
+            {"epoch", timeline_->epoch()},
+            {"accumulated", compositor_->accumulatedFrames()},
+            {"clients", readyClients()},
+            {"client_list", clients},
+            {"fps", stats_.recentFps()},
+            {"wire_mb_per_s", rates.wireBytesPerSecond * 1e-6},
+            {"camera", cameraJson(timeline_->controlled().camera)},
+            {"exposure", scene_.image.exposure},
+            {"width", scene_.image.width},
+            {"height", scene_.image.height},
+            {"settings", settingsJson(scene_.render)}};
+}
+
+nlohmann::json Master::sceneJson() const {
+    const SceneState& state = timeline_->controlled();
+    nlohmann::json objects = nlohmann::json::array();
+    for (std::size_t m = 0; m < scene_.meshes.size(); ++m) {
+        const Transform& t = state.transforms[m];
+        objects.push_back({{"name", scene_.meshes[m].name},
+                           {"translate", vec3Json(t.translate)},
+                           {"rotate_deg", vec3Json(t.rotateDeg)},
+                           {"scale", vec3Json(t.scale)}});
+    }
+    nlohmann::json lights = nlohmann::json::array();
+    for (const QuadLight& l : state.quadLights)
+        lights.push_back(
+            {{"name", l.name}, {"type", "quad"}, {"on", l.on}, {"radiance", vec3Json(l.radiance)}});
+    for (const PointLight& l : state.pointLights)
+        lights.push_back({{"name", l.name},
+                          {"type", "point"},
+                          {"on", l.on},
+                          {"intensity", vec3Json(l.intensity)}});
+    return {{"objects", objects},
+            {"lights", lights},
+            {"camera", cameraJson(state.camera)},
+            {"exposure", scene_.image.exposure},
+            {"width", scene_.image.width},
+            {"height", scene_.image.height}};
+}
+
+nlohmann::json Master::pickJson(float x, float y) const {
+    const SceneState& state = timeline_->controlled();
+    const std::optional<PickHit> hit = pickObject(scene_, state, x, y);
+    if (!hit) return {{"ok", true}, {"object", nullptr}};
+    return {{"ok", true},
+            {"object", scene_.meshes[hit->mesh].name},
+            {"mesh", hit->mesh},
+            {"point", vec3Json(hit->point)},
+            {"distance", hit->distance},
+            {"translate", vec3Json(state.transforms[hit->mesh].translate)}};
+}
+
+std::string Master::defaultSnapshotPath() {
+    // Beside the first output, else in out/; numbered so that no snapshot replaces another.
+    const std::filesystem::path dir = options_.outputs.empty()
+                                          ? std::filesystem::path("out")
+                                          : options_.outputs.front().parent_path();
+    std::filesystem::path path;
+    do {
+        path = dir / fmt::format("snapshot_{:03d}.exr", ++snapshotsTaken_);
+    } while (std::filesystem::exists(path));
+    return path.string();
+}
+
+void Master::startView() {
+    ViewServer::Options o;
+    o.host = options_.viewHost;
+    o.port = options_.viewPort;
+    o.page = viewPage();
+    // Off loopback whoever reaches the port could steer the session: a token, made now and
+    // printed once, must then be in the URL of the page and of the WebSocket.
+    const bool loopback = boost::asio::ip::make_address(o.host).is_loopback();
+    if (!loopback) o.token = net::ClusterKey::randomSecret().substr(0, 32);
+    const std::string token = o.token;
+    view_ = std::make_unique<ViewServer>(
+        io_, std::move(o), [this](const std::string& line, ControlServer::Reply reply) {
+            onControl(line, std::move(reply));
+        });
+    if (loopback)
+        spdlog::info("view on http://{}:{}/", options_.viewHost, view_->port());
+    else
+        spdlog::info(
+            "view on http://{}:{}/?token={} (any address of this machine; the page and "
+            "its WebSocket need the token)",
+            options_.viewHost, view_->port(), token);
+}
+
+void Master::publishToView(std::uint32_t frame) {
+    if (!view_ || view_->viewers() == 0) return;
+    // Copied now: the compositor's image changes with the next frame.
+    nlohmann::json status = statusJson();
+    status["type"] = "frame";
+    status["frame"] = frame;
+    status["frame_epoch"] = stats_.frame(frame).epoch;
+    status["frame_seconds"] = stats_.frame(frame).seconds;
+    viewPending_ = ViewFrame{std::make_shared<const Image>(compositor_->shown()), status.dump(),
+                             scene_.image.exposure};
+    encodeViewFrame();
+}
+
+void Master::encodeViewFrame() {
+    if (viewEncoding_ || !viewPending_) return;
+    viewEncoding_ = true;
+    pool_.submit([this, f = std::move(*viewPending_)] {
+        std::shared_ptr<const std::string> message;
+        try {
+            message = ViewServer::frameMessage(f.status, encodeJpeg(*f.image, f.exposure));
+        } catch (const std::exception& e) {
+            spdlog::error("view: {}", e.what());
+        }
+        boost::asio::post(io_, [this, message] {
+            viewEncoding_ = false;
+            if (message && view_ && !ending_) view_->publish(message);
+            encodeViewFrame();
+        });
+    });
+    viewPending_.reset();
 }
 
 }  // namespace igi

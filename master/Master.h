@@ -12,15 +12,18 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include <boost/asio/signal_set.hpp>
+#include <nlohmann/json.hpp>
 
 #include "ControlServer.h"
 #include "FrameCompositor.h"
 #include "LocalClients.h"
 #include "MasterOptions.h"
 #include "Messages.h"
+#include "ProgressLine.h"
 #include "SceneTimeline.h"
 #include "Statistics.h"
 #include "TileScheduler.h"
+#include "ViewServer.h"
 #include "net/ClusterKey.h"
 #include "net/Connection.h"
 #include "render/FrameBuffer.h"
@@ -43,6 +46,8 @@ class Master {
 
     /// Runs the whole session; returns the process exit code.
     int run();
+    /// Draws this progress line as frames complete (main makes one on a terminal).
+    void showProgress(std::shared_ptr<ProgressLine> progress) { progress_ = std::move(progress); }
 
   private:
     struct Session {
@@ -85,6 +90,17 @@ class Master {
     void onComposited(std::uint32_t frame, double seconds);
     void onControl(const std::string& line, ControlServer::Reply reply);
     void writeFrameImages(std::uint32_t frame);
+    void startView();
+    /// The newest composited image goes to the view's browsers: tone-mapped and encoded on the
+    /// pool, one frame at a time (frames composited meanwhile are skipped, not queued).
+    void publishToView(std::uint32_t frame);
+    void encodeViewFrame();
+    /// The session's state for `status` commands and the view's overlay.
+    nlohmann::json statusJson();
+    /// The scene's objects, lights and camera as control commands would set them.
+    nlohmann::json sceneJson() const;
+    nlohmann::json pickJson(float x, float y) const;
+    std::string defaultSnapshotPath();
     bool framesLeft(std::uint32_t frame) const {
         return options_.frames == 0 || frame < std::uint32_t(options_.frames);
     }
@@ -112,6 +128,17 @@ class Master {
     std::optional<net::ClusterKey> key_;  ///< none: --insecure
     std::string localSecret_;             ///< given to local clients through their environment
     std::unique_ptr<ControlServer> control_;
+    std::unique_ptr<ViewServer> view_;
+    /// The newest composited image not yet encoded for the view, with its status.
+    struct ViewFrame {
+        std::shared_ptr<const Image> image;
+        std::string status;
+        float exposure = 0;
+    };
+    std::optional<ViewFrame> viewPending_;
+    bool viewEncoding_ = false;
+    std::shared_ptr<ProgressLine> progress_;
+    int snapshotsTaken_ = 0;
     boost::asio::signal_set signals_;
     std::int64_t compositedEpoch_ = -1;  ///< epoch of the frame last composited
     std::int64_t openedEpoch_ = -1;      ///< epoch of the frame last opened

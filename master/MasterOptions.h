@@ -20,6 +20,9 @@ struct MasterOptions {
     bool control = false;  ///< accept control commands (docs/ANIMATION.md)
     std::string controlHost = "127.0.0.1";
     std::uint16_t controlPort = 0;  ///< 0: any free port (logged)
+    bool view = false;              ///< serve the web view (docs/VIEW.md)
+    std::string viewHost = "127.0.0.1";
+    std::uint16_t viewPort = 0;  ///< 0: any free port (logged)
     int localClients = 0;
     int remoteClients = 0;  ///< wait for this many clients from anywhere
     std::string listenHost = "127.0.0.1";

@@ -63,6 +63,29 @@ double Statistics::recentFps() const {
     return span > 0 ? double(doneTimes_.size() - 1) / span : 0.0;
 }
 
+const Statistics::Rates& Statistics::sampleRates(double seconds) {
+    if (lastTotals_.seconds >= 0 && seconds - lastTotals_.seconds < kRateWindow) return rates_;
+    Totals now;
+    now.seconds = seconds;
+    for (const auto& [id, c] : clients_) {
+        now.rays[id] = c.rays;
+        now.tiles[id] = c.tiles;
+        now.bytes += c.bytes;
+    }
+    if (lastTotals_.seconds >= 0) {
+        const double dt = seconds - lastTotals_.seconds;
+        rates_ = {};
+        for (const auto& [id, c] : clients_) {
+            if (c.left) continue;
+            rates_.raysPerSecond[id] = double(now.rays[id] - lastTotals_.rays[id]) / dt;
+            rates_.tilesPerSecond[id] = double(now.tiles[id] - lastTotals_.tiles[id]) / dt;
+        }
+        rates_.wireBytesPerSecond = double(now.bytes - lastTotals_.bytes) / dt;
+    }
+    lastTotals_ = std::move(now);
+    return rates_;
+}
+
 double Statistics::fps(double totalSeconds) const {
     std::size_t shown = 0;
     for (const auto& [index, f] : frames_) shown += f.shown;

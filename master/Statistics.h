@@ -78,11 +78,28 @@ class Statistics {
     /// Frames per second over the last few frames shown.
     double recentFps() const;
 
+    /// Rates over the time since the previous sample (taken at `seconds` from the master's
+    /// start), once at least kRateWindow seconds have passed; until then the previous rates.
+    struct Rates {
+        std::map<ClientId, double> raysPerSecond;
+        std::map<ClientId, double> tilesPerSecond;
+        double wireBytesPerSecond = 0;  ///< tile results received, all clients
+    };
+    const Rates& sampleRates(double seconds);
+    static constexpr double kRateWindow = 0.5;
+
   private:
     std::map<std::uint32_t, FrameStats> frames_;
     std::map<ClientId, ClientStats> clients_;
     std::map<std::uint32_t, std::uint64_t> vplSum_, photonSum_;
     std::deque<double> doneTimes_;  ///< when the last frames were shown
+    struct Totals {
+        std::map<ClientId, std::uint64_t> rays, tiles;
+        std::uint64_t bytes = 0;
+        double seconds = -1;
+    };
+    Totals lastTotals_;
+    Rates rates_;
 };
 
 }  // namespace igi

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "Master.h"
+#include "ProgressLine.h"
 #include "SequencePath.h"
 #include "util/HostPort.h"
 
@@ -55,6 +56,11 @@ int main(int argc, char** argv) {
     auto* controlOpt =
         app.add_option("--control", control,
                        "accept control commands (igi-ctl) on HOST:PORT, e.g. 127.0.0.1:7879");
+    std::string view;
+    auto* viewOpt = app.add_option(
+        "--view", view,
+        "serve the web view on HOST:PORT (docs/VIEW.md), e.g. 127.0.0.1:8080; off loopback "
+        "it needs the token it prints");
     app.add_option("--local-clients", o.localClients,
                    "igi-client processes to start on this machine")
         ->capture_default_str()
@@ -193,6 +199,9 @@ int main(int argc, char** argv) {
                  "show each frame alone instead of their running mean");
     CLI11_PARSE(app, argc, argv);
 
+    // On a terminal, a finite run draws a progress line under the log (before the pattern is
+    // set: it replaces the logger's sink).
+    auto progress = igi::ProgressLine::attachIfTerminal(o.frames);
     spdlog::set_level(spdlog::level::from_str(logLevel));
     spdlog::set_pattern("[%H:%M:%S.%e] [master] [%l] %v");
     o.scene = scene;
@@ -248,6 +257,17 @@ int main(int argc, char** argv) {
                     ": control commands are not authenticated, so the control port listens on "
                     "loopback only (reach it from elsewhere through an SSH tunnel)");
         }
+        if (viewOpt->count()) {
+            const igi::HostPort hp = igi::parseHostPort(view, "--view");
+            o.view = true;
+            o.viewHost = hp.host == "localhost" ? "127.0.0.1" : hp.host;
+            o.viewPort = hp.port;
+            boost::system::error_code ec;
+            boost::asio::ip::make_address(o.viewHost, ec);
+            if (ec)
+                throw std::invalid_argument("--view " + view + ": '" + hp.host +
+                                            "' is not an IP address of this machine");
+        }
         if (!o.outputSequence.empty()) igi::checkSequencePattern(o.outputSequence);
     } catch (const std::invalid_argument& e) {
         spdlog::error("{}", e.what());
@@ -259,6 +279,7 @@ int main(int argc, char** argv) {
     }
     try {
         igi::Master master(o);
+        master.showProgress(progress);
         return master.run();
     } catch (const std::exception& e) {
         spdlog::error("{}", e.what());

@@ -27,11 +27,7 @@ void writeImage(const std::filesystem::path& path, const Image& image, float exp
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
     const std::string ext = path.extension().string();
     if (ext == ".png") {
-        const float scale = std::exp2(exposure);
-        std::vector<std::uint8_t> bytes(image.pixels.size() * 3);
-        for (std::size_t i = 0; i < image.pixels.size(); ++i)
-            for (int c = 0; c < 3; ++c)
-                bytes[3 * i + c] = toneMapChannel(image.pixels[i][c], scale);
+        const std::vector<std::uint8_t> bytes = toneMap8(image, exposure);
         writeWith(path, OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::UINT8),
                   OIIO::TypeDesc::UINT8, bytes.data());
     } else if (ext == ".exr") {

@@ -1,0 +1,426 @@
+#!/usr/bin/env node
+// The web view's end-to-end test (docs/VIEW.md): real masters with local clients, Debian's
+// chromium, headless, driven through the DevTools protocol (chrome-remote-interface), and the
+// master's control port to check what the page did. Run by ctest as ViewBrowser.
+//
+// Usage: node tests/view/view_test.js --bin BUILD/bin --scene SCENE.json --out DIR
+//   [--bench FILE.json] [--screenshot FILE.png]
+//   --bench: also measure key-to-image latency at 640x480 with 2 clients and the frame rate
+//            with the view open against without it, into FILE.json (scripts/bench_view.sh).
+//   --screenshot: save a screenshot of the page, converged, there (docs/images/view.png).
+"use strict";
+
+const {spawn} = require("child_process");
+const fs = require("fs");
+const http = require("http");
+const net = require("net");
+const os = require("os");
+const path = require("path");
+const CDP = require("chrome-remote-interface");
+const WebSocket = require("ws");
+
+const args = parseArgs(process.argv.slice(2));
+const results = [];
+const cleanups = [];
+
+function parseArgs(list) {
+  const a = {};
+  for (let i = 0; i < list.length; i += 2) a[list[i].replace(/^--/, "")] = list[i + 1];
+  for (const k of ["bin", "scene", "out"])
+    if (!a[k]) throw new Error(`--${k} is required (see the header of ${__filename})`);
+  return a;
+}
+
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+function check(condition, what, detail = "") {
+  results.push({ok: !!condition, what});
+  console.log(`${condition ? "ok  " : "FAIL"} ${what}${detail ? ": " + detail : ""}`);
+}
+
+async function waitFor(what, predicate, seconds = 60) {
+  const deadline = Date.now() + seconds * 1000;
+  for (;;) {
+    const value = await predicate();
+    if (value) return value;
+    if (Date.now() > deadline) throw new Error(`timed out after ${seconds} s waiting for ${what}`);
+    await sleep(50);
+  }
+}
+
+// ---- processes ----
+
+function startMaster(name, extra) {
+  const log = path.join(args.out, name + ".log");
+  const out = fs.openSync(log, "w");
+  const child = spawn(path.join(args.bin, "igi-master"),
+                      ["--scene", args.scene, "--frames", "0", "--control", "127.0.0.1:0",
+                       "--output", path.join(args.out, name + ".exr"), ...extra],
+                      {stdio: ["ignore", out, out]});
+  const master = {child, log, exited: null};
+  child.on("exit", (code) => { master.exited = code; });
+  cleanups.push(() => stopProcess(child));
+  return master;
+}
+
+async function logMatch(master, pattern) {
+  return waitFor(`'${pattern}' in ${master.log}`, () => {
+    if (master.exited !== null) throw new Error(`${master.log}: the master exited (${master.exited})`);
+    return fs.readFileSync(master.log, "utf8").match(pattern);
+  });
+}
+
+async function masterEndpoints(master) {
+  const view = await logMatch(master, /view on http:\/\/([^/]+):(\d+)\/(\?token=(\w+))?/);
+  const control = await logMatch(master, /control commands on 127\.0\.0\.1:(\d+)/);
+  await logMatch(master, /frame +0:/);
+  return {viewPort: Number(view[2]), token: view[4] || "", controlPort: Number(control[1])};
+}
+
+function stopProcess(child) {
+  return new Promise((resolve) => {
+    if (child.exitCode !== null || child.signalCode !== null) return resolve();
+    child.once("exit", resolve);
+    child.kill("SIGTERM");
+    setTimeout(() => child.kill("SIGKILL"), 10000).unref();
+  });
+}
+
+async function startChromium() {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), "igi-view-chromium-"));
+  // The flags that keep it off the network (this machine has none beyond its registries) and
+  // without a first-run or a sandbox (CI runs as root).
+  const child = spawn(process.env.IGI_CHROMIUM || "/usr/bin/chromium",
+                      ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+                       "--no-first-run", "--disable-background-networking",
+                       "--disable-component-update", "--disable-sync", "--disable-extensions",
+                       "--window-size=1100,760", "--remote-debugging-port=0",
+                       `--user-data-dir=${dir}`, "about:blank"],
+                      {stdio: ["ignore", "ignore", "pipe"]});
+  let stderr = "";
+  child.stderr.on("data", (d) => { stderr += d; });
+  cleanups.push(async () => {
+    await stopProcess(child);
+    fs.rmSync(dir, {recursive: true, force: true});
+  });
+  const portFile = path.join(dir, "DevToolsActivePort");
+  const port = await waitFor("chromium's DevTools port", () => {
+    if (child.exitCode !== null) throw new Error("chromium exited: " + stderr.slice(-2000));
+    return fs.existsSync(portFile) && Number(fs.readFileSync(portFile, "utf8").split("\n")[0]);
+  }, 60);
+  return {child, port};
+}
+
+// ---- the control port (what the master says, not what the page shows) ----
+
+function control(port, command) {
+  return new Promise((resolve, reject) => {
+    const socket = net.connect(port, "127.0.0.1");
+    let text = "";
+    socket.on("connect", () => socket.write(JSON.stringify(command) + "\n"));
+    socket.on("data", (d) => {
+      text += d;
+      const end = text.indexOf("\n");
+      if (end >= 0) { socket.end(); resolve(JSON.parse(text.slice(0, end))); }
+    });
+    socket.on("error", reject);
+  });
+}
+
+function httpStatus(url) {
+  return new Promise((resolve, reject) => {
+    http.get(url, (res) => { res.resume(); resolve(res.statusCode); }).on("error", reject);
+  });
+}
+
+// Resolves "open" or the HTTP status that refused the upgrade.
+function webSocketOutcome(url) {
+  return new Promise((resolve) => {
+    const ws = new WebSocket(url);
+    ws.on("open", () => { ws.close(); resolve("open"); });
+    ws.on("unexpected-response", (req, res) => { resolve(res.statusCode); req.destroy(); });
+    ws.on("error", (e) => resolve("error: " + e.message));
+  });
+}
+
+// ---- the page ----
+
+async function openPage(browserPort, url) {
+  const target = await CDP.New({port: browserPort, url: "about:blank"});
+  const client = await CDP({port: browserPort, target});
+  const {Page, Runtime, Emulation} = client;
+  await Page.enable();
+  await Runtime.enable();
+  await Emulation.setDeviceMetricsOverride({width: 1100, height: 760, deviceScaleFactor: 1,
+                                            mobile: false});
+  await Page.navigate({url});
+  await Page.loadEventFired();
+  const page = {
+    client,
+    eval: async (expression) => {
+      const r = await Runtime.evaluate({expression, awaitPromise: true, returnByValue: true});
+      if (r.exceptionDetails)
+        throw new Error(`in the page: ${expression}: ${r.exceptionDetails.exception?.description}`);
+      return r.result.value;
+    },
+    screenshot: async () => (await Page.captureScreenshot({format: "png"})).data,
+    key: async (code, key, keyCode) => {
+      await client.Input.dispatchKeyEvent({type: "keyDown", code, key, windowsVirtualKeyCode: keyCode});
+      await client.Input.dispatchKeyEvent({type: "keyUp", code, key, windowsVirtualKeyCode: keyCode});
+    },
+    mouse: (type, x, y) => client.Input.dispatchMouseEvent(
+        {type, x, y, button: "left", buttons: type === "mouseReleased" ? 0 : 1, clickCount: 1}),
+  };
+  cleanups.push(() => client.close().catch(() => {}));
+  return page;
+}
+
+// The mean absolute difference of two screenshots (0-255 per channel), over the image's part of
+// the page but its overlay; decoded by the browser itself.
+async function screenshotDifference(page, a, b) {
+  return page.eval(`(async () => {
+    const load = (data) => new Promise((ok, fail) => {
+      const i = new Image(); i.onload = () => ok(i); i.onerror = fail;
+      i.src = "data:image/png;base64," + data; });
+    const [x, y] = await Promise.all([load(${JSON.stringify(a)}), load(${JSON.stringify(b)})]);
+    const r = document.getElementById("image").getBoundingClientRect();
+    const pixels = (i) => { const c = document.createElement("canvas");
+      c.width = Math.round(r.width); c.height = Math.round(r.height);
+      const g = c.getContext("2d"); g.drawImage(i, -r.left, -r.top);
+      return g.getImageData(0, 0, c.width, c.height).data; };
+    const p = pixels(x), q = pixels(y);
+    // The overlay's text (fps, frame numbers) changes by itself: not part of the image.
+    const o = document.getElementById("overlay").getBoundingClientRect();
+    const width = Math.round(r.width);
+    let sum = 0, n = 0;
+    for (let k = 0; k < p.length; k += 4) {
+      const px = r.left + (k / 4) % width, py = r.top + Math.floor(k / 4 / width);
+      if (px >= o.left && px < o.right && py >= o.top && py < o.bottom) continue;
+      for (let c = 0; c < 3; ++c) { sum += Math.abs(p[k + c] - q[k + c]); ++n; }
+    }
+    return sum / n; })()`);
+}
+
+async function imageBox(page) {
+  return page.eval(`(() => { const i = document.getElementById("image");
+    const r = i.getBoundingClientRect();
+    return {left: r.left, top: r.top, scale: r.width / i.naturalWidth,
+            width: i.naturalWidth, height: i.naturalHeight}; })()`);
+}
+
+async function framesShown(page) { return page.eval("igiView.framesShown"); }
+
+// ---- the checks ----
+
+async function checkLoopbackSession(browser) {
+  const master = startMaster("loopback", ["--width", "320", "--height", "240",
+                                          "--local-clients", "2", "--view", "127.0.0.1:0"]);
+  const m = await masterEndpoints(master);
+  const url = `http://127.0.0.1:${m.viewPort}/`;
+  const page = await openPage(browser.port, url);
+
+  // The page loads and shows an image.
+  await waitFor("a first frame in the page", async () => (await framesShown(page)) >= 2, 60);
+  const box = await imageBox(page);
+  check(box.width === 320 && box.height === 240, "the page shows the session's image",
+        `${box.width}x${box.height}`);
+  const overlay = await page.eval(`document.getElementById("overlay").textContent`);
+  check(/fps/.test(overlay) && /accumulated \d+/.test(overlay) && /gi=igi/.test(overlay),
+        "the overlay shows fps, accumulation and the GI mode", JSON.stringify(overlay));
+
+  // Several viewers at once see the same session.
+  const second = await openPage(browser.port, url);
+  await waitFor("frames in a second page", async () => (await framesShown(second)) >= 2, 60);
+  const before = await framesShown(page);
+  await waitFor("more frames in the first page", async () => (await framesShown(page)) > before, 30);
+  check(true, "two pages at once both receive frames");
+  await second.client.close();
+
+  // While the camera moves, two screenshots a second apart differ; standing still, converge.
+  const moving = async () => {
+    for (let i = 0; i < 8; ++i) {
+      await page.key(i % 4 < 2 ? "KeyA" : "KeyD", i % 4 < 2 ? "a" : "d", i % 4 < 2 ? 65 : 68);
+      await sleep(60);
+    }
+  };
+  await moving();
+  const movingA = await page.screenshot();
+  await moving();
+  await sleep(400);
+  const movingB = await page.screenshot();
+  const movingDiff = await screenshotDifference(page, movingA, movingB);
+  // Standing still, the image converges: the change over a second shrinks as frames accumulate.
+  const stillPair = async (frames) => {
+    await waitFor(`${frames} accumulated frames in the page`, async () =>
+        (await page.eval("igiView.status.accumulated")) >= frames, 180);
+    const a = await page.screenshot();
+    await sleep(1000);
+    const b = await page.screenshot();
+    return {diff: await screenshotDifference(page, a, b), b};
+  };
+  const early = await stillPair(2);
+  const late = await stillPair(40);
+  const stillB = late.b;
+  check(movingDiff > 1.0, "screenshots a second apart differ while the camera moves",
+        `mean |difference| ${movingDiff.toFixed(2)} of 255`);
+  check(late.diff < early.diff / 2 && late.diff < movingDiff / 8,
+        "screenshots a second apart converge while the view holds still",
+        `mean |difference| ${early.diff.toFixed(3)} after 2 frames, ` +
+        `${late.diff.toFixed(3)} after 40`);
+  fs.writeFileSync(path.join(args.out, "still.png"), Buffer.from(stillB, "base64"));
+
+  // A key press moves the camera: the master says so, and the image changes.
+  const camera0 = (await control(m.controlPort, {cmd: "status"})).camera;
+  const shot0 = await page.screenshot();
+  const latencies0 = await page.eval("igiView.latencies.length");
+  await page.key("KeyW", "w", 87);
+  const camera1 = await waitFor("the master's camera to move", async () => {
+    const c = (await control(m.controlPort, {cmd: "status"})).camera;
+    return c.position[2] < camera0.position[2] - 1e-4 ? c : null;
+  }, 10);
+  await waitFor("the key press's image", async () =>
+      (await page.eval("igiView.latencies.length")) > latencies0, 20);
+  const shot1 = await page.screenshot();
+  const keyDiff = await screenshotDifference(page, shot0, shot1);
+  check(camera1.position[2] < camera0.position[2], "W moves the master's camera forward",
+        `z ${camera0.position[2].toFixed(3)} -> ${camera1.position[2].toFixed(3)}`);
+  check(keyDiff > 0.5, "the image shows the move", `mean |difference| ${keyDiff.toFixed(2)}`);
+  const latency = (await page.eval("igiView.latencies")).slice(-1)[0];
+  console.log(`     key to image: ${latency.ms.toFixed(0)} ms, ${latency.frames.toFixed(2)} frame times`);
+
+  // Click selects an object; dragging it moves it (the master's scene state says so).
+  const target = await findPixelOf(m.controlPort, "glass_ball", box);
+  check(target !== null, "the master's pick finds the glass ball in the image");
+  if (target) {
+    const b = await imageBox(page);
+    const px = b.left + target.x * b.scale, py = b.top + target.y * b.scale;
+    await page.mouse("mousePressed", px, py);
+    await sleep(100);
+    await page.mouse("mouseReleased", px, py);
+    const selected = await waitFor("the selection", () =>
+        page.eval("igiView.selected && igiView.selected.name"), 10);
+    check(selected === "glass_ball", "a click selects the object under it", selected);
+    const start = objectOf(await control(m.controlPort, {cmd: "scene"}), "glass_ball").translate;
+    await page.mouse("mousePressed", px, py);
+    await sleep(300);  // the page asks the master what is under the pointer
+    for (let i = 1; i <= 10; ++i) {
+      await page.mouse("mouseMoved", px + 4 * i, py);
+      await sleep(30);
+    }
+    await page.mouse("mouseReleased", px + 40, py);
+    const moved = await waitFor("the glass ball to move", async () => {
+      const t = objectOf(await control(m.controlPort, {cmd: "scene"}), "glass_ball").translate;
+      return t[0] > start[0] + 0.05 ? t : null;
+    }, 10).catch(() => null);
+    check(moved !== null, "dragging the selected object moves it in the master's scene",
+          moved ? `x ${start[0].toFixed(3)} -> ${moved[0].toFixed(3)}` : "it did not move");
+  }
+
+  // Exposure and the save button go through the same commands.
+  const saved = await page.eval(`igiView.send({cmd: "snapshot"})`);
+  check(saved.ok && fs.existsSync(saved.path), "the save command writes an EXR on the master",
+        saved.path || saved.error);
+  await stopProcess(master.child);
+  check(master.exited === 0, "the master ends cleanly", `exit ${master.exited}`);
+}
+
+function objectOf(scene, name) { return scene.objects.find((o) => o.name === name); }
+
+// An image position where the master's pick sees `name`, searched on a grid.
+async function findPixelOf(controlPort, name, box) {
+  for (let y = 8; y < box.height; y += 8)
+    for (let x = 8; x < box.width; x += 8) {
+      const hit = await control(controlPort, {cmd: "pick", x, y});
+      if (hit.object === name) return {x: x + 4, y: y + 4};
+    }
+  return null;
+}
+
+async function checkTokenSession(browser) {
+  const master = startMaster("token", ["--width", "160", "--height", "120",
+                                       "--local-clients", "1", "--view", "0.0.0.0:0"]);
+  const m = await masterEndpoints(master);
+  check(m.token.length >= 16, "off loopback, the master prints a token", `${m.token.length} characters`);
+  const base = `127.0.0.1:${m.viewPort}`;
+  check(await httpStatus(`http://${base}/`) === 403, "the page is refused without the token");
+  check(await httpStatus(`http://${base}/?token=wrong`) === 403, "and with a wrong token");
+  check(await webSocketOutcome(`ws://${base}/ws`) === 403, "the WebSocket is refused without the token");
+  check(await webSocketOutcome(`ws://${base}/ws?token=${m.token}`) === "open",
+        "the WebSocket opens with the token");
+  check(await httpStatus(`http://${base}/?token=${m.token}`) === 200, "the page loads with the token");
+  const page = await openPage(browser.port, `http://${base}/?token=${m.token}`);
+  await waitFor("a frame in the page with the token", async () => (await framesShown(page)) >= 1, 60);
+  check(true, "the page with the token shows frames");
+  const log = fs.readFileSync(master.log, "utf8");
+  check(/WebSocket from .* refused: no token/.test(log), "refusals are logged");
+  await stopProcess(master.child);
+}
+
+// ---- measurement (scripts/bench_view.sh) ----
+
+async function bench(browser) {
+  const common = ["--local-clients", "2", "--width", "640", "--height", "480"];
+  const report = {latency: [], fps: {with: [], without: []}};
+  // Key to image at 640x480: presses a few seconds apart, the view still in between.
+  {
+    const master = startMaster("bench-latency", [...common, "--view", "127.0.0.1:0"]);
+    const m = await masterEndpoints(master);
+    const page = await openPage(browser.port, `http://127.0.0.1:${m.viewPort}/`);
+    await waitFor("frames", async () => (await framesShown(page)) >= 4, 120);
+    for (let i = 0; i < 12; ++i) {
+      const n = await page.eval("igiView.latencies.length");
+      await page.key(i % 2 ? "KeyA" : "KeyD", i % 2 ? "a" : "d", i % 2 ? 65 : 68);
+      await waitFor("the press's image", async () =>
+          (await page.eval("igiView.latencies.length")) > n, 30);
+      await sleep(1500);
+    }
+    report.latency = await page.eval("igiView.latencies");
+    if (args.screenshot) {
+      await sleep(6000);
+      fs.writeFileSync(args.screenshot, Buffer.from(await page.screenshot(), "base64"));
+    }
+    await page.client.close();
+    await stopProcess(master.child);
+  }
+  // Frame rate with a page open against without, alternating, over fixed frame counts.
+  for (let round = 0; round < 3; ++round)
+    for (const withView of [false, true]) {
+      const stats = path.join(args.out, `bench-fps-${round}-${withView}.json`);
+      const extra = [...common, "--frames", "40", "--stats-json", stats];
+      let page = null;
+      const master = startMaster(`bench-fps-${round}-${withView}`,
+                                 withView ? [...extra, "--view", "127.0.0.1:0"] : extra);
+      if (withView) {
+        const view = await logMatch(master, /view on http:\/\/127\.0\.0\.1:(\d+)\//);
+        page = await openPage(browser.port, `http://127.0.0.1:${view[1]}/`);
+      }
+      await waitFor("the run to end", () => master.exited !== null, 600);
+      if (page) await page.client.close();
+      const fps = JSON.parse(fs.readFileSync(stats, "utf8")).fps;
+      report.fps[withView ? "with" : "without"].push(fps);
+      console.log(`     ${withView ? "with" : "without"} the view: ${fps.toFixed(3)} fps`);
+    }
+  fs.writeFileSync(args.bench, JSON.stringify(report, null, 1));
+}
+
+async function main() {
+  fs.mkdirSync(args.out, {recursive: true});
+  const browser = await startChromium();
+  try {
+    if (args.bench) {
+      await bench(browser);
+    } else {
+      await checkLoopbackSession(browser);
+      await checkTokenSession(browser);
+    }
+  } catch (e) {
+    check(false, "the test ran to its end", e.stack || String(e));
+  } finally {
+    for (const cleanup of cleanups.reverse()) await cleanup();
+  }
+  const failed = results.filter((r) => !r.ok).length;
+  console.log(`view test: ${results.length - failed} of ${results.length} checks passed`);
+  process.exit(failed ? 1 : 0);
+}
+
+main();
