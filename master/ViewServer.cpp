@@ -10,6 +10,7 @@
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
+#include <nlohmann/json.hpp>
 
 namespace igi {
 
@@ -122,21 +123,22 @@ class Viewer : public std::enable_shared_from_this<Viewer> {
             if (ec == websocket::error::message_too_big)
                 spdlog::warn("view: closing viewer {}: a message over {} bytes", peer_,
                              ViewServer::kMaxMessage);
-            else
+            else if (ec == websocket::error::closed || ec == boost::asio::error::eof ||
+                     ec == boost::asio::error::connection_reset)
                 spdlog::info("view: viewer {} left ({})", peer_, ec.message());
+            else
+                spdlog::warn("view: closing viewer {}: {}", peer_, ec.message());
             return;
         }
-        if (!ws_.got_text()) {
-            spdlog::warn("view: closing viewer {}: a binary message (commands are JSON text)",
-                         peer_);
-            open_ = false;
-            shared_->viewers.erase(this);
-            ws_.async_close(websocket::close_code::policy_error,
-                            [self = shared_from_this()](beast::error_code) {});
-            return;
-        }
+        if (!ws_.got_text()) return refuse("a binary message (commands are JSON text)");
         const std::string line = beast::buffers_to_string(in_.data());
         in_.consume(in_.size());
+        // The page sends only JSON objects: anything else is not a browser running it. A command
+        // that is JSON but wrong (an unknown name, a value out of range) gets its error reply
+        // from the handler instead, as on the control port.
+        const nlohmann::json parsed = nlohmann::json::parse(line, nullptr, false);
+        if (parsed.is_discarded() || !parsed.is_object())
+            return refuse("a message that is not a JSON object");
         const std::uint64_t id = nextId_++;
         shared_->handler(line, [weak = weak_from_this(), id](std::string reply) {
             auto self = weak.lock();
@@ -146,6 +148,14 @@ class Viewer : public std::enable_shared_from_this<Viewer> {
             self->write();
         });
         read();
+    }
+
+    void refuse(const std::string& why) {
+        spdlog::warn("view: closing viewer {}: {}", peer_, why);
+        open_ = false;
+        shared_->viewers.erase(this);
+        ws_.async_close(websocket::close_code::policy_error,
+                        [self = shared_from_this()](beast::error_code) {});
     }
 
     void write() {

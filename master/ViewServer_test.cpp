@@ -146,7 +146,7 @@ TEST(ViewServer, WithATokenNothingIsServedWithoutIt) {
 }
 
 // A message the view does not take closes that viewer only; the server goes on.
-TEST(ViewServer, OversizedOrBinaryMessagesCloseTheirViewer) {
+TEST(ViewServer, OversizedBinaryOrNonJsonMessagesCloseTheirViewer) {
     Served s("");
     {
         Client big(s.port, "/ws");
@@ -162,11 +162,18 @@ TEST(ViewServer, OversizedOrBinaryMessagesCloseTheirViewer) {
         EXPECT_THROW(binary.read(), beast::system_error);
         EXPECT_EQ(binary.ws.reason().code, websocket::close_code::policy_error);
     }
+    for (const char* text : {"{not json", "[1,2]", "\"status\""}) {
+        Client notAnObject(s.port, "/ws");
+        notAnObject.ws.text(true);
+        notAnObject.ws.write(boost::asio::buffer(std::string(text)));
+        EXPECT_THROW(notAnObject.read(), beast::system_error) << text;
+        EXPECT_EQ(notAnObject.ws.reason().code, websocket::close_code::policy_error) << text;
+    }
     EXPECT_TRUE(s.commands.empty());
     Client fine(s.port, "/ws");
     fine.ws.text(true);
-    fine.ws.write(boost::asio::buffer(std::string("{}")));
-    EXPECT_EQ(nlohmann::json::parse(fine.read())["reply"]["length"], 2);
+    fine.ws.write(boost::asio::buffer(std::string(R"({"cmd":"nonsense"})")));
+    EXPECT_EQ(nlohmann::json::parse(fine.read())["reply"]["length"], 18);
 }
 
 }  // namespace

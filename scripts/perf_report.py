@@ -790,6 +790,18 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
     w("How to read it. The light tree (Estevez and Kulla 2018, with pbrt-v4's bounds) weighs each light, or each group of lights, by power x the best emitting cosine toward the point x the best receiving cosine at it / squared distance, and walks down by those weights; it is unbiased (a weight is zero only where no light below can reach the point's front side) and its exact probabilities go into the MIS weights. For the path tracer, which takes one light sample per vertex, that is worth 2.6 to 5.4 times less error at equal time in these rooms. For IGI the gain is small, 0.94 to 1.17 times at equal time (1.14 to 1.37 with one direct sample instead of 4): the discontinuity buffer already pools the 3 x 3 sets' 36 light samples over each pixel, so the remaining noise is mostly the VPLs' (18 a set, still emitted by power and all connected to every pixel of their set), and the tree's walks, plus the shadow rays it now traces toward lights that power sampling drew behind the point and skipped, cost about a quarter more time a frame. `auto` uses the tree from 8 emitters on all the same: IGI never lost more than 6 % at equal time here, and the path tracer gains much. Not measured here: scenes whose lights are far apart (several rooms, a long hall), where power sampling spends most samples on lights out of reach of the point and the tree should gain IGI more.")
     w("")
 
+    w("## 7. The web view: key to image, and what it costs")
+    w("")
+    w("`scripts/bench_view.sh` (its own script, about 5 minutes) opens the web view "
+      "(`igi-master --view`, docs/VIEW.md) in Debian's Chromium, presses keys in the page and "
+      "times each until the first image that shows the move, and compares the frame rate of "
+      "runs with a page open against runs without.")
+    w("")
+    w("<!-- BEGIN GENERATED view -->")
+    w(generated_block(doc, "view") or "Not measured yet: run scripts/bench_view.sh.")
+    w("<!-- END GENERATED view -->")
+    w("")
+
     w("## What is not measured here")
     w("")
     w("- Real network: every run is on loopback on one machine; latency and bandwidth of a LAN "

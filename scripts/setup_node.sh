@@ -6,16 +6,18 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
-missing=()
-command -v node >/dev/null || missing+=(nodejs)
-command -v npm >/dev/null || missing+=(npm)
-if ((${#missing[@]})); then
-  echo "installing: ${missing[*]}"
-  sudo=""
-  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-  $sudo apt-get update
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
-fi
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+updated=0
+install() {
+  echo "installing: $*"
+  if ((!updated)); then $sudo apt-get update; updated=1; fi
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "$@"
+}
+# One at a time: a nodejs package that brings its own npm (NodeSource's) must not be paired
+# with Debian's npm, which would conflict with it.
+command -v node >/dev/null || install nodejs
+command -v npm >/dev/null || install npm
 
 view="$root/tests/view"
 if [ ! -f "$view/node_modules/.package-lock.json" ] ||

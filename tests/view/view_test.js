@@ -54,8 +54,9 @@ function startMaster(name, extra) {
   const log = path.join(args.out, name + ".log");
   const out = fs.openSync(log, "w");
   const child = spawn(path.join(args.bin, "igi-master"),
-                      ["--scene", args.scene, "--frames", "0", "--control", "127.0.0.1:0",
-                       "--output", path.join(args.out, name + ".exr"), ...extra],
+                      ["--scene", args.scene, "--control", "127.0.0.1:0",
+                       "--output", path.join(args.out, name + ".exr"),
+                       ...(extra.includes("--frames") ? [] : ["--frames", "0"]), ...extra],
                       {stdio: ["ignore", out, out]});
   const master = {child, log, exited: null};
   child.on("exit", (code) => { master.exited = code; });
