@@ -802,10 +802,21 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
     w("<!-- END GENERATED view -->")
     w("")
 
+    w("## 8. Across network links: frame rate against link rate")
+    w("")
+    w("`scripts/bench_network.sh` (its own script, root, about 6 minutes) runs the master and "
+      "each client on its own host, made of a network namespace with its own address and link, "
+      "and limits the links with tc (tests/NetworkLab.h makes the same hosts for the LAN tests).")
+    w("")
+    w("<!-- BEGIN GENERATED network -->")
+    w(generated_block(doc, "network") or "Not measured yet: run scripts/bench_network.sh.")
+    w("<!-- END GENERATED network -->")
+    w("")
+
     w("## What is not measured here")
     w("")
-    w("- Real network: every run is on loopback on one machine; latency and bandwidth of a LAN "
-      "are not in these figures.")
+    w("- Real network: sections 1-7 run on loopback on one machine. Section 8 limits link rates "
+      "between network namespaces, still on one machine: no real NIC, no latency.")
     w("- Peers other than raw Embree (Cycles, Embree's `pathtracer`): they render a different "
       "thing (converged path tracing) and are not timed by this script.")
     w("- Clients on separate machines: the scaling section emulates them with CPU caps on one "

@@ -4,7 +4,7 @@
 # runs last, so the output ends with its summary line.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-"$root/scripts/setup.sh" clang libclang-rt-14-dev chromium
+"$root/scripts/setup.sh" clang libclang-rt-14-dev chromium iproute2
 "$root/scripts/setup_node.sh"
 
 # Only the fuzz targets and what they link (igi_common, igi_protocol): the sanitized clang

@@ -1,0 +1,117 @@
+// Sessions across real network links: master and clients on "hosts" that are network
+// namespaces of this machine (tests/NetworkLab.h), each with its own address and link.
+#include <sys/stat.h>
+
+#include <gtest/gtest.h>
+
+#include "NetworkLab.h"
+#include "Session.h"
+
+namespace igi::testing {
+namespace {
+
+/// Ends the processes it holds when the test ends, however it ends (before the lab is removed).
+struct Processes {
+    std::vector<pid_t> pids;
+    ~Processes() {
+        for (pid_t p : pids)
+            if (p > 0 && kill(p, 0) == 0) kill(p, SIGKILL), waitProcess(p, 10);
+    }
+};
+
+int countMatches(const std::string& text, const std::regex& pattern) {
+    return int(std::distance(std::sregex_iterator(text.begin(), text.end(), pattern),
+                             std::sregex_iterator()));
+}
+
+int lastFrameIn(const std::filesystem::path& log) {
+    const std::string text = readFile(log);
+    static const std::regex frameLine(R"(frame +(\d+):)");
+    int last = -1;
+    for (std::sregex_iterator it(text.begin(), text.end(), frameLine), end; it != end; ++it)
+        last = std::max(last, std::stoi((*it)[1].str()));
+    return last;
+}
+
+// Waits until the log has `count` matches of `pattern`; false on timeout or the process's end.
+bool waitForCount(const std::filesystem::path& log, const std::regex& pattern, int count, pid_t pid,
+                  double seconds) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (std::chrono::steady_clock::now() < deadline) {
+        if (countMatches(readFile(log), pattern) >= count) return true;
+        if (kill(pid, 0) != 0) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
+}
+
+// The issue's LAN test: a client whose link goes down mid-session is dropped, its tiles are
+// rendered by the other, and the image equals an undisturbed run's; when the link comes back the
+// client joins again by itself.
+TEST(Lan, AClientWhoseLinkIsCutIsReplacedAndComesBackWhenTheLinkDoes) {
+    const auto dir = scratchDir("lan-cut");
+    NetworkLab lab(3, dir);
+    if (!lab.ok()) GTEST_SKIP() << "no test hosts: " << lab.error();
+    Processes processes;
+
+    const auto secret = dir / "cluster.secret";
+    std::ofstream(secret) << "lan-test-secret-0123456789abcdef\n";
+    chmod(secret.c_str(), 0600);
+    const std::string masterAddress = NetworkLab::address(0) + ":7878";
+    auto args = sceneArgs(0, masterAddress);
+    args.insert(args.end(), {"--clients", "2", "--secret-file", secret.string(), "--read-timeout",
+                             "2", "--output", (dir / "faulty.exr").string(), "--stats-json",
+                             (dir / "stats.json").string(), "--control", "127.0.0.1:7879"});
+    const auto log = dir / "master.log";
+    const pid_t master = spawnProcess(lab.in(0, masterCommand(args)), log);
+    processes.pids.push_back(master);
+    for (int i = 1; i <= 2; ++i)
+        processes.pids.push_back(spawnProcess(
+            lab.in(i, clientCommand({"--connect", masterAddress, "--threads", "1", "--secret-file",
+                                     secret.string(), "--read-timeout", "2", "--reconnect-seconds",
+                                     "120"})),
+            dir / ("client" + std::to_string(i) + ".log")));
+
+    const std::regex ready(R"(client \d+ \(.*\) is ready)");
+    ASSERT_TRUE(waitForCount(log, ready, 2, master, 120)) << readFile(log);
+    ASSERT_FALSE(waitForLine(log, std::regex(R"(frame +3:)"), master, 120).empty())
+        << readFile(log);
+
+    // The link of host 1 goes down: nothing reaches it and nothing leaves it.
+    ASSERT_TRUE(lab.setLink(1, false)) << lab.error();
+    const std::regex left(R"(client \d+ left)");
+    ASSERT_TRUE(waitForCount(log, left, 1, master, 60)) << readFile(log);
+    const int afterCut = lastFrameIn(log);
+    ASSERT_FALSE(
+        waitForLine(log, std::regex("frame +" + std::to_string(afterCut + 3) + ":"), master, 120)
+            .empty())
+        << "the session did not go on with one client\n"
+        << readFile(log);
+
+    // Back up: the client finds its master again by itself.
+    ASSERT_TRUE(lab.setLink(1, true)) << lab.error();
+    const std::regex fromHost1(
+        "client \\d+ connected from " +
+        std::regex_replace(NetworkLab::address(1), std::regex("\\."), "\\.") + ":");
+    ASSERT_TRUE(waitForCount(log, fromHost1, 2, master, 150)) << readFile(log);
+    ASSERT_TRUE(waitForCount(log, ready, 3, master, 60)) << readFile(log);
+    const int afterReturn = lastFrameIn(log);
+    ASSERT_FALSE(
+        waitForLine(log, std::regex("frame +" + std::to_string(afterReturn + 3) + ":"), master, 120)
+            .empty())
+        << readFile(log);
+
+    const ProcessResult stop = runProcess(
+        lab.in(0, {(binDir() / "igi-ctl").string(), "--connect", "127.0.0.1:7879", "stop"}),
+        dir / "ctl.log");
+    ASSERT_EQ(stop.exitCode, 0) << stop.output;
+    ASSERT_EQ(waitProcess(master, 120), 0) << readFile(log);
+    std::ifstream stats(dir / "stats.json");
+    const int frames = int(nlohmann::json::parse(stats)["frames"].size());
+    ASSERT_GT(frames, afterReturn);
+    expectSameAsUndisturbed(dir, frames);
+    if (!HasFailure()) std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace igi::testing
