@@ -17,7 +17,8 @@
 #                   downloads the base system (default: /var/cache/igi-fresh-machine-check);
 #                   the root itself is made anew every time
 #
-# The mirror and the apt sources come from this machine's own apt configuration; nothing about
+# The mirror and the apt sources come from this machine's own apt configuration, and the CA
+# certificates and npm settings that let it reach its registries from its own; nothing about
 # them is written here. Cleanup is a trap: every mount is undone first, and the root is removed
 # with rm --one-file-system, so that a mount left behind (a bind-mounted /dev) is never emptied.
 set -euo pipefail
@@ -140,6 +141,14 @@ cp -a /etc/apt/sources.list.d/. "$chroot_dir/etc/apt/sources.list.d/"
 [ -f /etc/apt/sources.list ] && cp /etc/apt/sources.list "$chroot_dir/etc/apt/sources.list"
 cp -a /etc/apt/apt.conf.d/. "$chroot_dir/etc/apt/apt.conf.d/"
 cp -L /etc/resolv.conf "$chroot_dir/etc/resolv.conf"
+# Its trust for the registries it reaches, as a new machine of this kind has it: the local CA
+# certificates (an intercepting proxy's, here), which ca-certificates adds to the system bundle
+# when the set-up installs it, and npm's global settings (here: use that bundle).
+if [ -d /usr/local/share/ca-certificates ]; then
+  mkdir -p "$chroot_dir/usr/local/share/ca-certificates"
+  cp -a /usr/local/share/ca-certificates/. "$chroot_dir/usr/local/share/ca-certificates/"
+fi
+[ -f /etc/npmrc ] && cp /etc/npmrc "$chroot_dir/etc/npmrc"
 
 mount_into /proc -t proc proc
 mount_into /sys -t sysfs sysfs
