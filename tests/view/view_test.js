@@ -102,7 +102,12 @@ async function startChromium() {
   child.stderr.on("data", (d) => { stderr += d; });
   cleanups.push(async () => {
     await stopProcess(child);
-    fs.rmSync(dir, {recursive: true, force: true});
+    // Its helper processes may still be writing the profile for a moment.
+    try {
+      fs.rmSync(dir, {recursive: true, force: true, maxRetries: 10, retryDelay: 200});
+    } catch (e) {
+      console.log(`     could not remove ${dir}: ${e.message}`);
+    }
   });
   const portFile = path.join(dir, "DevToolsActivePort");
   const port = await waitFor("chromium's DevTools port", () => {
@@ -147,8 +152,10 @@ function webSocketOutcome(url) {
 // ---- the page ----
 
 async function openPage(browserPort, url) {
-  const target = await CDP.New({port: browserPort, url: "about:blank"});
-  const client = await CDP({port: browserPort, target});
+  // 127.0.0.1, not chrome-remote-interface's default "localhost": a minimal root (the
+  // fresh-machine check's) has no /etc/hosts to resolve it.
+  const target = await CDP.New({host: "127.0.0.1", port: browserPort, url: "about:blank"});
+  const client = await CDP({host: "127.0.0.1", port: browserPort, target});
   const {Page, Runtime, Emulation} = client;
   await Page.enable();
   await Runtime.enable();
