@@ -150,6 +150,9 @@ if [ -d /usr/local/share/ca-certificates ]; then
 fi
 [ -f /etc/npmrc ] && cp /etc/npmrc "$chroot_dir/etc/npmrc"
 
+# The root a mount point of its own, as / is on a machine: `ip netns` (the LAN tests) makes /
+# a slave mount, which fails on a plain folder. First, so that every mount below lies on it.
+mount_into "" --bind "$chroot_dir"
 mount_into /proc -t proc proc
 mount_into /sys -t sysfs sysfs
 mount_into /dev --bind /dev

@@ -24,15 +24,6 @@ int countMatches(const std::string& text, const std::regex& pattern) {
                              std::sregex_iterator()));
 }
 
-int lastFrameIn(const std::filesystem::path& log) {
-    const std::string text = readFile(log);
-    static const std::regex frameLine(R"(frame +(\d+):)");
-    int last = -1;
-    for (std::sregex_iterator it(text.begin(), text.end(), frameLine), end; it != end; ++it)
-        last = std::max(last, std::stoi((*it)[1].str()));
-    return last;
-}
-
 // Waits until the log has `count` matches of `pattern`; false on timeout or the process's end.
 bool waitForCount(const std::filesystem::path& log, const std::regex& pattern, int count, pid_t pid,
                   double seconds) {
@@ -43,6 +34,28 @@ bool waitForCount(const std::filesystem::path& log, const std::regex& pattern, i
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     return false;
+}
+
+std::string namespaces() {
+    const auto dir = scratchDir("netns-list");
+    const ProcessResult r = runProcess({"/sbin/ip", "netns", "list"}, dir / "list.log");
+    std::filesystem::remove_all(dir);
+    return r.output;
+}
+
+// Whatever a lab made is gone when it is, even when the test's folder went first.
+TEST(Lan, TheLabRemovesEveryNamespaceItMade) {
+    std::string host;
+    {
+        const auto dir = scratchDir("lan-cleanup");
+        NetworkLab lab(2, dir);
+        if (!lab.ok()) GTEST_SKIP() << "no test hosts: " << lab.error();
+        host = lab.host(1);
+        ASSERT_NE(namespaces().find(host), std::string::npos);
+        std::filesystem::remove_all(dir);
+    }
+    const std::string prefix = host.substr(0, host.find('-') + 1);
+    EXPECT_EQ(namespaces().find(prefix), std::string::npos) << namespaces();
 }
 
 // The issue's LAN test: a client whose link goes down mid-session is dropped, its tiles are

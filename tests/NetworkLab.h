@@ -45,9 +45,11 @@ class NetworkLab {
         ok_ = true;
     }
 
+    // Not logged: the test may have removed its folder already, and a command whose log cannot
+    // be opened does not run at all.
     ~NetworkLab() {
-        for (const std::string& ns : made_) run({"ip", "netns", "del", ns});
-        run({"ip", "netns", "del", sw()});
+        for (const std::string& ns : made_) run({"ip", "netns", "del", ns}, "/dev/null");
+        run({"ip", "netns", "del", sw()}, "/dev/null");
     }
 
     bool ok() const { return ok_; }
@@ -76,9 +78,11 @@ class NetworkLab {
   private:
     std::string sw() const { return prefix_ + "sw"; }
 
-    bool run(std::vector<std::string> command) {
+    bool run(std::vector<std::string> command) { return run(std::move(command), log_); }
+
+    bool run(std::vector<std::string> command, const std::filesystem::path& log) {
         command[0] = "/sbin/" + command[0];  // iproute2 puts ip and tc there
-        const ProcessResult r = runProcess(command, log_, 30);
+        const ProcessResult r = runProcess(command, log, 30);
         if (r.exitCode == 0) return true;
         if (error_.empty()) {
             std::string line;

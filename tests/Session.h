@@ -64,6 +64,16 @@ inline std::smatch waitForLine(const std::filesystem::path& log, const std::rege
     return {};
 }
 
+/// The highest frame number a master's log reports finished (-1: none).
+inline int lastFrameIn(const std::filesystem::path& log) {
+    const std::string text = readFile(log);
+    static const std::regex frameLine(R"(frame +(\d+):)");
+    int last = -1;
+    for (std::sregex_iterator it(text.begin(), text.end(), frameLine), end; it != end; ++it)
+        last = std::max(last, std::stoi((*it)[1].str()));
+    return last;
+}
+
 /// Reads an image a test produced; a NaN or infinite pixel fails the test.
 inline Image readFiniteImage(const std::filesystem::path& path) {
     Image image = readImage(path);
@@ -143,14 +153,7 @@ struct OpenSession {
     bool started() const { return master > 0 && !port.empty() && !controlPort.empty(); }
 
     /// The highest frame number the master has reported finished so far (-1: none).
-    int lastFrame() const {
-        const std::string text = readFile(log);
-        static const std::regex frameLine(R"(frame +(\d+):)");
-        int last = -1;
-        for (std::sregex_iterator it(text.begin(), text.end(), frameLine), end; it != end; ++it)
-            last = std::max(last, std::stoi((*it)[1].str()));
-        return last;
-    }
+    int lastFrame() const { return lastFrameIn(log); }
 
     /// Waits until `count` more frames than now have finished.
     bool waitFrames(int count) {
