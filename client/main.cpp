@@ -8,6 +8,8 @@
 
 int main(int argc, char** argv) {
     CLI::App app{"igi-client: renders tiles for an igi-master"};
+    // The identity a master compares at connect; scripts/cluster.sh asks each host for it first.
+    app.set_version_flag("--version", IGI_BUILD_ID, "print the build identity and exit");
     std::string connect = "127.0.0.1:7878";
     igi::ClientOptions options;
     std::string logLevel = "info";

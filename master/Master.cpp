@@ -792,6 +792,7 @@ nlohmann::json Master::statusJson() {
         clients.push_back(
             {{"id", id},
              {"host", s.host},
+             {"address", s.connection->peer()},
              {"threads", s.threads},
              {"tiles_per_s", tiles == rates.tilesPerSecond.end() ? 0.0 : tiles->second},
              {"mrays_per_s", rays == rates.raysPerSecond.end() ? 0.0 : rays->second * 1e-6}});

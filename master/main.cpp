@@ -33,6 +33,7 @@ nlohmann::json parsePair(const std::string& text, const std::string& option) {
 
 int main(int argc, char** argv) {
     CLI::App app{"igi-master: Instant Global Illumination on a cluster of render clients"};
+    app.set_version_flag("--version", IGI_BUILD_ID, "print the build identity and exit");
     igi::MasterOptions o;
     std::string scene, listen, logLevel = "info";
     std::vector<std::string> outputs;

@@ -24,7 +24,22 @@ if ((${#missing[@]})); then
   sudo=""
   if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
   $sudo apt-get update
+  # Server packages the tests use (openssh-server, munge, slurmd, slurmctld) would start their
+  # daemons on this machine as they install (their postinst calls invoke-rc.d); the tests run
+  # their own, in their own folders. A policy-rc.d that answers 101 ("forbidden") keeps the
+  # install from starting anything. Only one this script wrote is removed again.
+  guard=/usr/sbin/policy-rc.d
+  if [ ! -e "$guard" ]; then
+    printf '#!/bin/sh\n# written by igi scripts/setup.sh for one apt-get install\nexit 101\n' |
+      $sudo tee "$guard" >/dev/null
+    $sudo chmod 755 "$guard"
+    trap '$sudo rm -f "$guard"' EXIT
+  fi
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
+  if grep -q "written by igi scripts/setup.sh" "$guard" 2>/dev/null; then
+    $sudo rm -f "$guard"
+    trap - EXIT
+  fi
 fi
 
 cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release

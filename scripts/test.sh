@@ -4,7 +4,8 @@
 # runs last, so the output ends with its summary line.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-"$root/scripts/setup.sh" clang libclang-rt-14-dev chromium iproute2
+"$root/scripts/setup.sh" clang libclang-rt-14-dev chromium iproute2 \
+  openssh-server openssh-client munge slurmd slurmctld slurm-client
 "$root/scripts/setup_node.sh"
 
 # Only the fuzz targets and what they link (igi_common, igi_protocol): the sanitized clang

@@ -100,6 +100,12 @@ const std::vector<SkipRule>& skipRules() {
          "a libFuzzer run of 600 s per target (the test command runs the short ones)"},
         {"", std::regex(R"(^(IGI_BUILD=\S+ )?scripts/bench_[a-z_]+\.sh(\s|$))"),
          "a benchmark of several minutes that rewrites docs/ (PERFORMANCE.md, ACCURACY.md)"},
+        {"", std::regex(R"(^scripts/cluster\.sh(\s|$))"),
+         "needs ssh hosts; tests/Cluster_test.cpp runs it against real sshd servers on test "
+         "hosts made of network namespaces"},
+        {"", std::regex(R"(^sbatch\s)"),
+         "needs a SLURM cluster; tests/Slurm_test.cpp submits deploy/slurm/igi.sbatch to a "
+         "one-machine SLURM that it starts"},
         {"", std::regex(R"(^scripts/fault_injection\.sh(\s|$))"),
          "minutes of random kills and stops against running sessions"},
         {"docs/FUZZING.md", std::regex(R"(^(CC=clang CXX=clang\+\+ )?cmake\s)"),
@@ -533,15 +539,23 @@ void expectKnownFlags(const std::string& where, const std::string& shown,
     }
 }
 
-/// A script a document names exists, and every flag it is shown with appears in its text.
+/// A script a document names exists, and every flag it is shown with appears in its text. What
+/// follows a bare `--` is the master's (scripts/cluster.sh passes it on): igi-master's flags.
 void expectScriptFlags(const std::string& where, const std::string& shown,
-                       const std::vector<std::string>& words) {
+                       std::vector<std::string> words) {
     const std::size_t s = commandStart(words);
     if (s >= words.size()) return;
     const fs::path script = sourceDir() / words[s];
     if (!fs::is_regular_file(script)) {
         ADD_FAILURE() << where << ": `" << shown << "`: there is no " << words[s];
         return;
+    }
+    const auto dashes = std::find(words.begin() + std::ptrdiff_t(s), words.end(), "--");
+    if (dashes != words.end()) {
+        std::vector<std::string> master = {"igi-master"};
+        master.insert(master.end(), dashes + 1, words.end());
+        expectKnownFlags(where, shown, master);
+        words.erase(dashes, words.end());
     }
     const std::string text = readFile(script);
     for (const auto& flag : namedFlags(words, s + 1))

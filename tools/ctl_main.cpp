@@ -86,6 +86,17 @@ std::string exchange(const igi::HostPort& master, const std::string& line) {
     return reply.substr(0, reply.find('\n'));
 }
 
+// `status --table`: what scripts/cluster.sh reads with `read`, one record per line.
+void printTable(const nlohmann::json& status) {
+    std::cout << "session " << status.value("frames_done", 0) << ' '
+              << status.value("frames_total", 0) << ' ' << status.value("fps", 0.0) << ' '
+              << status.value("clients", 0) << '\n';
+    for (const nlohmann::json& c : status.value("client_list", nlohmann::json::array()))
+        std::cout << "client " << c.value("address", "?") << ' ' << c.value("threads", 0) << ' '
+                  << c.value("tiles_per_s", 0.0) << ' ' << c.value("mrays_per_s", 0.0) << ' '
+                  << c.value("host", "?") << '\n';
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -123,6 +134,11 @@ int main(int argc, char** argv) {
                           {"--type", "type", 0}});
     auto* status =
         app.add_subcommand("status", "frames done, epoch, accumulated frames, clients, fps");
+    bool table = false;
+    status->add_flag("--table", table,
+                     "print lines for scripts instead of JSON: 'session FRAMES_DONE FRAMES_TOTAL "
+                     "FPS CLIENTS', then 'client ADDRESS:PORT THREADS TILES_PER_S MRAYS_PER_S "
+                     "HOSTNAME' for each");
     std::string snapshotPath;
     auto* snapshot =
         app.add_subcommand("snapshot", "writes the next frame to a file (.png or .exr)");
@@ -144,9 +160,13 @@ int main(int argc, char** argv) {
     try {
         const std::string line = *send ? raw : command.dump();
         const std::string reply = exchange(igi::parseHostPort(connect, "--connect"), line);
-        std::cout << reply << '\n';
         const auto parsed = nlohmann::json::parse(reply, nullptr, false);
-        return parsed.is_object() && parsed.value("ok", false) ? 0 : 1;
+        const bool ok = parsed.is_object() && parsed.value("ok", false);
+        if (table && ok)
+            printTable(parsed);
+        else
+            std::cout << reply << '\n';
+        return ok ? 0 : 1;
     } catch (const std::exception& e) {
         std::cerr << "igi-ctl: " << e.what() << '\n';
         return 2;
