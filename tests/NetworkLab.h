@@ -58,9 +58,11 @@ class NetworkLab {
     std::string host(int i) const { return prefix_ + "h" + std::to_string(i); }
     static std::string address(int i) { return "10.213.0." + std::to_string(i + 1); }
 
-    /// The command, run in host i's namespace.
+    /// The command, run in host i's network namespace. Through nsenter rather than `ip netns
+    /// exec`, which also gives the command a fresh /sys without /sys/fs/cgroup (slurmd fails
+    /// without it); the network namespace is all a test host needs.
     std::vector<std::string> in(int i, std::vector<std::string> command) const {
-        command.insert(command.begin(), {"/sbin/ip", "netns", "exec", host(i)});
+        command.insert(command.begin(), {"/usr/bin/nsenter", "--net=/run/netns/" + host(i)});
         return command;
     }
 
