@@ -62,12 +62,9 @@ master_args=("$@")
 [[ "$port" =~ ^[0-9]+$ ]] || die "--port '$port' is not a number"
 [[ "$status_seconds" =~ ^[0-9]+$ ]] || die "--status-seconds '$status_seconds' is not a whole number"
 control_arg=(--control 127.0.0.1:0)  # the master's own --control, if given, is used instead
-for ((k = 0; k < ${#master_args[@]}; k++)); do
-  a="${master_args[k]}"
+for a in "${master_args[@]}"; do
   case "$a" in
     --control | --control=*) control_arg=() ;;
-  esac
-  case "$a" in
     --listen | --listen=* | --clients | --clients=* | --secret-file | --secret-file=* | \
       --local-clients | --local-clients=* | --insecure)
       die "the master's $a is the launcher's to set (see --help)" ;;
@@ -93,8 +90,9 @@ done <"$hosts_file"
 n=${#names[@]}
 ((n > 0)) || die "$hosts_file names no host"
 
-session="$(date +%Y%m%d-%H%M%S)-$$"
-logs="${logs:-cluster-logs/$(date +%Y%m%d-%H%M%S)}"
+started="$(date +%Y%m%d-%H%M%S)"
+session="$started-$$"
+logs="${logs:-cluster-logs/$started}"
 mkdir -p "$logs"
 : >"$logs/cluster.log"
 
@@ -138,9 +136,15 @@ for ((i = 0; i < n; i++)); do
 done
 ((failed == 0)) || die "not starting: a host failed its check (above; logs in $logs)"
 
+# Each host's IPv4 address, once: the status lines match clients to hosts by it.
+addresses=()
+for ((i = 0; i < n; i++)); do
+  addresses[i]="$(getent ahostsv4 "${names[i]}" | awk 'NR == 1 { print $1 }')"
+done
+
 # ---- where the master listens: the address this machine's route to the first host leaves from
 if [ -z "$master_address" ]; then
-  first="$(getent ahostsv4 "${names[0]}" | awk 'NR == 1 { print $1 }')"
+  first="${addresses[0]}"
   [ -n "$first" ] && master_address="$(ip -4 -o route get "$first" 2>/dev/null |
     sed -n 's/.* src \([0-9.]*\).*/\1/p')"
   [ -n "$master_address" ] || die "cannot tell this machine's address toward ${names[0]}: give --master-address"
@@ -171,8 +175,10 @@ stop_all() {
     [ -f "$logs/client-$i.log" ] &&
       remote_pid="$(sed -n 's/^igi-cluster: client pid \([0-9]*\)$/\1/p' "$logs/client-$i.log" | head -n 1)"
     local cmd=""
-    # The client ends by itself when the master says so; one that did not is ended here.
-    [ -n "$remote_pid" ] && cmd="kill $remote_pid 2>/dev/null; "
+    # The client ends by itself when the master says so; one that did not is ended here. Only
+    # if that pid is still an igi-client: once it ended, the pid may be another process's.
+    [ -n "$remote_pid" ] &&
+      cmd="if [ \"\$(cat /proc/$remote_pid/comm 2>/dev/null)\" = igi-client ]; then kill $remote_pid; fi; "
     [ -n "${installed[i]:-}" ] && cmd+="rm -rf $(q "$(host_dir "$i")")"
     [ -n "$cmd" ] && { ssh_to "$i" -n "$cmd" >>"$logs/cleanup-$i.log" 2>&1 || say "${names[i]}: clean-up failed (see $logs/cleanup-$i.log)"; }
     [ -n "${client_pids[i]:-}" ] && kill "${client_pids[i]}" 2>/dev/null || true
@@ -230,9 +236,8 @@ status() {
   done <<<"$table"
   say "frames ${done_:-?}/${total:-?}, ${fps:-?} fps"
   for ((i = 0; i < n; i++)); do
-    local address
-    address="$(getent ahostsv4 "${names[i]}" | awk 'NR == 1 { print $1 }')"
-    if [ -n "${seen[$address]:-}" ]; then
+    local address="${addresses[i]}"
+    if [ -n "$address" ] && [ -n "${seen[$address]:-}" ]; then
       say "  ${names[i]}: ${seen[$address]}"
     elif kill -0 "${client_pids[i]}" 2>/dev/null; then
       say "  ${names[i]}: not connected (its ssh runs; see $logs/client-$i.log)"
@@ -241,8 +246,9 @@ status() {
     fi
   done
 }
+ticks=$((status_seconds > 0 ? status_seconds * 10 : 10))  # of 0.1 s
 while kill -0 "$master_pid" 2>/dev/null; do
-  for ((t = 0; t < status_seconds * 10 || (status_seconds == 0 && t < 10); t++)); do
+  for ((t = 0; t < ticks; t++)); do
     kill -0 "$master_pid" 2>/dev/null || break 2
     sleep 0.1
   done

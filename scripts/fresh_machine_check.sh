@@ -155,6 +155,10 @@ fi
 mount_into "" --bind "$chroot_dir"
 mount_into /proc -t proc proc
 mount_into /sys -t sysfs sysfs
+# The cgroup hierarchy, as a booted Debian has it: slurmd will not start without it.
+# (a slave: nothing done to it in the root reaches this machine's).
+mount_into /sys/fs/cgroup --rbind /sys/fs/cgroup
+mount --make-rslave "$chroot_dir/sys/fs/cgroup"
 mount_into /dev --bind /dev
 mount_into /dev/pts -t devpts devpts
 mount_into /dev/shm -t tmpfs tmpfs

@@ -75,7 +75,7 @@ struct ClusterLab {
             return;
         }
         ssh = std::make_unique<SshServers>(lab, std::vector<int>{1, 2}, dir);
-        if (!ssh->ok()) skip = "no ssh servers: " + ssh->error();
+        if (!ssh->available()) skip = "no ssh servers: " + ssh->error();
     }
 
     /// The hosts file: host 1 by the plain form, host 2 with the user and port columns.
@@ -130,6 +130,7 @@ TEST(Cluster, ASessionOverSshEqualsALocalRunAndLeavesNothingBehind) {
     ClusterLab c("cluster-session");
     KillLeftovers leftovers{c.dir};
     if (!c.skip.empty()) GTEST_SKIP() << c.skip;
+    ASSERT_TRUE(c.ssh->ok()) << "the ssh servers did not start: " << c.ssh->error();
     const std::string secretText = "cluster-test-secret-5d1c0e7a9b";
     const fs::path secret = c.dir / "cluster.secret";
     std::ofstream(secret) << secretText << "\n";
@@ -218,6 +219,7 @@ TEST(Cluster, CtrlCStopsEverythingTheLauncherStarted) {
     ClusterLab c("cluster-interrupt");
     KillLeftovers leftovers{c.dir};
     if (!c.skip.empty()) GTEST_SKIP() << c.skip;
+    ASSERT_TRUE(c.ssh->ok()) << "the ssh servers did not start: " << c.ssh->error();
     const fs::path log = c.dir / "launcher.log";
     const pid_t launcher = startOpenSession(c, log);
     ASSERT_GT(launcher, 0) << readFile(log);
@@ -236,6 +238,7 @@ TEST(Cluster, AMasterThatDiesTakesItsClientsWithIt) {
     ClusterLab c("cluster-master-dies");
     KillLeftovers leftovers{c.dir};
     if (!c.skip.empty()) GTEST_SKIP() << c.skip;
+    ASSERT_TRUE(c.ssh->ok()) << "the ssh servers did not start: " << c.ssh->error();
     const fs::path log = c.dir / "launcher.log";
     const pid_t launcher = startOpenSession(c, log);
     ASSERT_GT(launcher, 0) << readFile(log);
@@ -256,6 +259,7 @@ TEST(Cluster, UnreachableHostsAndOtherBuildsAreRefusedBeforeAnythingStarts) {
     ClusterLab c("cluster-check");
     KillLeftovers leftovers{c.dir};
     if (!c.skip.empty()) GTEST_SKIP() << c.skip;
+    ASSERT_TRUE(c.ssh->ok()) << "the ssh servers did not start: " << c.ssh->error();
 
     // 10.213.0.9 is in the lab's network, but no host has it.
     const fs::path hosts = c.dir / "hosts-unreachable";

@@ -34,6 +34,9 @@ class SlurmCluster {
     }
 
     bool ok() const { return ok_; }
+    /// False only where this machine cannot have it (no root, a package missing): a test then
+    /// skips. Once everything is there, a daemon that does not start is a failure.
+    bool available() const { return available_; }
     const std::string& error() const { return error_; }
     std::filesystem::path config() const { return dir_ / "slurm.conf"; }
 
@@ -46,12 +49,12 @@ class SlurmCluster {
 
   private:
     bool start(int nodes) {
-        if (geteuid() != 0) return fail("needs root (slurmd and munged run as root)");
+        if (geteuid() != 0) return unavailable("needs root (slurmd and munged run as root)");
         for (const char* tool : {"/usr/sbin/munged", "/usr/sbin/slurmctld", "/usr/sbin/slurmd",
                                  "/usr/bin/sbatch", "/usr/bin/srun", "/usr/bin/scontrol"})
             if (!std::filesystem::exists(tool))
-                return fail(std::string("no ") + tool +
-                            " (Debian's munge, slurmctld, slurmd and slurm-client)");
+                return unavailable(std::string("no ") + tool +
+                                   " (Debian's munge, slurmctld, slurmd and slurm-client)");
         // slurmctld checks that SlurmctldHost names the machine it runs on.
         char host[256] = {};
         gethostname(host, sizeof host - 1);
@@ -149,6 +152,10 @@ class SlurmCluster {
         return true;
     }
 
+    bool unavailable(const std::string& why) {
+        available_ = false;
+        return fail(why);
+    }
     bool fail(const std::string& why) {
         if (error_.empty()) error_ = why;
         return false;
@@ -158,6 +165,7 @@ class SlurmCluster {
     std::filesystem::path dir_;
     std::vector<pid_t> pids_;
     bool ok_ = false;
+    bool available_ = true;
     std::string error_;
 };
 

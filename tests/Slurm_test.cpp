@@ -18,7 +18,8 @@ void runJobOnTwoNodes(const fs::path& dir) {
     NetworkLab lab(3, dir);
     if (!lab.ok()) GTEST_SKIP() << "no test hosts: " << lab.error();
     SlurmCluster slurm(lab, 2, dir / "slurm");
-    if (!slurm.ok()) GTEST_SKIP() << "no test SLURM: " << slurm.error();
+    if (!slurm.available()) GTEST_SKIP() << "no test SLURM: " << slurm.error();
+    ASSERT_TRUE(slurm.ok()) << "the test SLURM did not start: " << slurm.error();
 
     // The submit folder: sbatch runs the job there, relative outputs land there.
     const fs::path submit = dir / "submit";

@@ -43,6 +43,9 @@ class SshServers {
     }
 
     bool ok() const { return ok_; }
+    /// False only where this machine cannot have it (no root, a package missing): a test then
+    /// skips. Once everything is there, a daemon that does not start is a failure.
+    bool available() const { return available_; }
     const std::string& error() const { return error_; }
     /// For `ssh -F`: the generated identity, and only the generated host keys are trusted.
     std::filesystem::path config() const { return dir_ / "ssh_config"; }
@@ -51,8 +54,8 @@ class SshServers {
     bool start(const NetworkLab& lab, const std::vector<int>& hosts) {
         for (const char* tool : {"/usr/sbin/sshd", "/usr/bin/ssh", "/usr/bin/ssh-keygen"})
             if (!std::filesystem::exists(tool))
-                return fail(std::string("no ") + tool +
-                            " (Debian's openssh-server and openssh-client)");
+                return unavailable(std::string("no ") + tool +
+                                   " (Debian's openssh-server and openssh-client)");
         std::error_code e;
         if (!std::filesystem::exists("/run/sshd")) {
             madeRunDir_ = std::filesystem::create_directories("/run/sshd", e);
@@ -105,6 +108,10 @@ class SshServers {
         if (r.exitCode != 0) fail("ssh-keygen failed: " + r.output);
         return r.exitCode == 0;
     }
+    bool unavailable(const std::string& why) {
+        available_ = false;
+        return fail(why);
+    }
     bool fail(const std::string& why) {
         if (error_.empty()) error_ = why;
         return false;
@@ -115,6 +122,7 @@ class SshServers {
     std::vector<pid_t> pids_;
     bool madeRunDir_ = false;
     bool ok_ = false;
+    bool available_ = true;
     std::string error_;
 };
 
