@@ -220,11 +220,36 @@ async function screenshotDifference(page, a, b) {
     return {mean: sum / n, changed: changed / (n / 3)}; })()`);
 }
 
+// Where the image is on the page, and its size in image pixels: the session's, as the master's
+// status gives it (the <img>'s naturalWidth reads 0 while the next frame loads).
 async function imageBox(page) {
   return page.eval(`(() => { const i = document.getElementById("image");
-    const r = i.getBoundingClientRect();
-    return {left: r.left, top: r.top, scale: r.width / i.naturalWidth,
-            width: i.naturalWidth, height: i.naturalHeight}; })()`);
+    const r = i.getBoundingClientRect(), s = igiView.status || igiView.scene;
+    return {left: r.left, top: r.top, scale: r.width / s.width,
+            width: s.width, height: s.height}; })()`);
+}
+
+// A click dispatched in the page just after the <img> was given a frame that has not loaded yet
+// (a copy of the shown one, as a new blob URL), as when a user clicks while the next frame
+// arrives: once the browser has taken up the new source (a microtask after it is set), the
+// image's naturalWidth reads 0 until the blob is decoded. Returns the naturalWidth at the click,
+// to say whether that moment was reached.
+async function clickWhileFrameLoads(page, x, y) {
+  return page.eval(`(async () => {
+    const image = document.getElementById("image");
+    while (!image.complete || image.naturalWidth === 0)  // copy a frame that has loaded
+      await new Promise((ok) => setTimeout(ok, 5));
+    const canvas = document.createElement("canvas");
+    canvas.width = image.naturalWidth; canvas.height = image.naturalHeight;
+    canvas.getContext("2d").drawImage(image, 0, 0);
+    const blob = await new Promise((ok) => canvas.toBlob(ok, "image/jpeg"));
+    image.src = URL.createObjectURL(blob);
+    await Promise.resolve();
+    const naturalWidth = image.naturalWidth;
+    const at = {clientX: ${x}, clientY: ${y}, button: 0, bubbles: true, cancelable: true};
+    image.dispatchEvent(new MouseEvent("mousedown", at));
+    window.dispatchEvent(new MouseEvent("mouseup", at));
+    return naturalWidth; })()`);
 }
 
 async function framesShown(page) { return page.eval("igiView.framesShown"); }
@@ -308,18 +333,50 @@ async function checkLoopbackSession(browser) {
   const latency = (await page.eval("igiView.latencies")).slice(-1)[0];
   console.log(`     key to image: ${latency.ms.toFixed(0)} ms, ${latency.frames.toFixed(2)} frame times`);
 
-  // Click selects an object; dragging it moves it (the master's scene state says so).
+  // Click selects an object; dragging it moves it (the master's scene state says so). The page
+  // may still be sending the key's last camera steps: the pixel is looked for once the master's
+  // camera has held still for half a second, or the ball could move from under it.
+  let lastCamera = "";
+  await waitFor("the camera to hold still", async () => {
+    await sleep(500);
+    const c = JSON.stringify((await control(m.controlPort, {cmd: "status"})).camera);
+    const still = c === lastCamera;
+    lastCamera = c;
+    return still;
+  }, 20);
   const target = await findPixelOf(m.controlPort, "glass_ball", box);
-  check(target !== null, "the master's pick finds the glass ball in the image");
-  if (target) {
+  const room = await findPixelOf(m.controlPort, "room", box);
+  check(target !== null && room !== null, "the master's pick finds the glass ball and the room in the image");
+  if (target && room) {
     const b = await imageBox(page);
     const px = b.left + target.x * b.scale, py = b.top + target.y * b.scale;
+    const selection = () => waitFor("the selection", () =>
+        page.eval("igiView.selected && igiView.selected.name"), 10)
+        .catch(() => "nothing after 10 s");
+    const pick = () => page.eval("JSON.stringify(igiView.lastPick)");
+    // A click while the next frame loads lands where it was made, not on pixel (0, 0).
+    const naturalWidth = await clickWhileFrameLoads(page, px, py);
+    const whileLoading = await selection();
+    check(whileLoading === "glass_ball", "a click while the next frame loads selects what is under it",
+          `${whileLoading}; the image's naturalWidth then ${naturalWidth}; the page's pick ${await pick()}`);
+    // Another click elsewhere selects what is there instead.
+    await page.mouse("mousePressed", b.left + room.x * b.scale, b.top + room.y * b.scale);
+    await sleep(100);
+    await page.mouse("mouseReleased", b.left + room.x * b.scale, b.top + room.y * b.scale);
+    const other = await waitFor("another selection", async () => {
+      const name = await page.eval("igiView.selected && igiView.selected.name");
+      return name !== "glass_ball" ? name : null;
+    }, 10).catch(() => "glass_ball still");
+    check(other === "room", "a click elsewhere selects what is there", `${other}; the page's pick ${await pick()}`);
     await page.mouse("mousePressed", px, py);
     await sleep(100);
     await page.mouse("mouseReleased", px, py);
-    const selected = await waitFor("the selection", () =>
-        page.eval("igiView.selected && igiView.selected.name"), 10);
-    check(selected === "glass_ball", "a click selects the object under it", selected);
+    const selected = await waitFor("the ball's selection", async () => {
+      const name = await page.eval("igiView.selected && igiView.selected.name");
+      return name === "glass_ball" ? name : null;
+    }, 10).catch(async () => await page.eval("igiView.selected && igiView.selected.name"));
+    check(selected === "glass_ball", "a click selects the object under it",
+          `${selected} (clicked image pixel ${target.x}, ${target.y}; the page's pick ${await pick()})`);
     const start = objectOf(await control(m.controlPort, {cmd: "scene"}), "glass_ball").translate;
     await page.mouse("mousePressed", px, py);
     await sleep(300);  // the page asks the master what is under the pointer
@@ -346,14 +403,20 @@ async function checkLoopbackSession(browser) {
 
 function objectOf(scene, name) { return scene.objects.find((o) => o.name === name); }
 
-// An image position where the master's pick sees `name`, searched on a grid.
+// An image position where the master's pick sees `name`, well inside its silhouette so that the
+// page's click there (mapped through the page's layout, rounded by the browser) picks it too: of
+// the points of an 8-pixel grid that the master's pick says are the object's, the one nearest
+// their centroid.
 async function findPixelOf(controlPort, name, box) {
-  for (let y = 8; y < box.height; y += 8)
-    for (let x = 8; x < box.width; x += 8) {
-      const hit = await control(controlPort, {cmd: "pick", x, y});
-      if (hit.object === name) return {x: x + 4, y: y + 4};
-    }
-  return null;
+  const hits = [];
+  for (let y = 4.5; y < box.height; y += 8)
+    for (let x = 4.5; x < box.width; x += 8)
+      if ((await control(controlPort, {cmd: "pick", x, y})).object === name) hits.push({x, y});
+  if (hits.length === 0) return null;
+  const cx = hits.reduce((s, p) => s + p.x, 0) / hits.length;
+  const cy = hits.reduce((s, p) => s + p.y, 0) / hits.length;
+  const d = (p) => (p.x - cx) ** 2 + (p.y - cy) ** 2;
+  return hits.reduce((best, p) => (d(p) < d(best) ? p : best));
 }
 
 async function checkTokenSession(browser) {
