@@ -1,6 +1,10 @@
 // Sessions across real network links: master and clients on "hosts" that are network
 // namespaces of this machine (tests/NetworkLab.h), each with its own address and link.
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -56,6 +60,45 @@ TEST(Lan, TheLabRemovesEveryNamespaceItMade) {
     }
     const std::string prefix = host.substr(0, host.find('-') + 1);
     EXPECT_EQ(namespaces().find(prefix), std::string::npos) << namespaces();
+}
+
+// Whether `ip netns list` output names `name` (each line: the name, then maybe "(id: N)").
+bool listed(const std::string& list, const std::string& name) {
+    std::istringstream lines(list);
+    for (std::string line; std::getline(lines, line);)
+        if (line.substr(0, line.find(' ')) == name) return true;
+    return false;
+}
+
+// A test killed by a signal leaves its namespaces (no destructor runs): the next lab removes
+// those of processes that are gone, and keeps those of live ones.
+TEST(Lan, ALabRemovesTheNamespacesOfKilledTests) {
+    if (geteuid() != 0) GTEST_SKIP() << "no test hosts: needs root";
+    // A pid that was a process and is no more: a child that has exited and been reaped.
+    const pid_t gone = fork();
+    if (gone == 0) _exit(0);
+    ASSERT_GT(gone, 0);
+    waitpid(gone, nullptr, 0);
+    const std::string stale = "igi" + std::to_string(gone) + "-h0";
+    const std::string live = "igi" + std::to_string(getppid()) + "-h0";  // ctest, alive
+    const auto dir = scratchDir("lan-leftovers");
+    for (const auto& name : {stale, live})
+        ASSERT_EQ(runProcess({"/sbin/ip", "netns", "add", name}, dir / "add.log", 30).exitCode, 0)
+            << name;
+    {
+        NetworkLab lab(1, dir);
+        if (!lab.ok()) {
+            runProcess({"/sbin/ip", "netns", "del", stale}, dir / "del.log", 30);
+            runProcess({"/sbin/ip", "netns", "del", live}, dir / "del.log", 30);
+            GTEST_SKIP() << "no test hosts: " << lab.error();
+        }
+    }
+    const std::string after = namespaces();
+    runProcess({"/sbin/ip", "netns", "del", live}, dir / "del.log", 30);
+    runProcess({"/sbin/ip", "netns", "del", stale}, dir / "del.log", 30);
+    std::filesystem::remove_all(dir);
+    EXPECT_FALSE(listed(after, stale)) << after;
+    EXPECT_TRUE(listed(after, live)) << after;
 }
 
 // The LAN test: a client whose link goes down mid-session is dropped, its tiles are

@@ -4,10 +4,14 @@
 // link that a test can rate-limit (tc tbf) or cut (ip link set down). The addresses exist only
 // inside these namespaces. Everything is made by the constructor and removed by the destructor
 // (deleting a namespace deletes its links and ends nothing else); processes started in a host
-// must be ended by the test first. Needs root and iproute2.
+// must be ended by the test first. A test killed by a signal runs no destructor: the next lab
+// removes what such a test left (namespaces named after a process that no longer exists).
+// Needs root and iproute2.
 
 #include <unistd.h>
 
+#include <cctype>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -25,6 +29,7 @@ class NetworkLab {
             error_ = "needs root (network namespaces, veth pairs and a bridge)";
             return;
         }
+        removeLeftovers();
         if (!run({"ip", "netns", "add", sw()}) ||
             !run({"ip", "-n", sw(), "link", "add", "br0", "type", "bridge"}) ||
             !run({"ip", "-n", sw(), "link", "set", "br0", "up"}))
@@ -75,6 +80,23 @@ class NetworkLab {
     bool limitRate(int i, int mbit) {
         return run({"tc", "-n", host(i), "qdisc", "replace", "dev", "eth0", "root", "tbf", "rate",
                     std::to_string(mbit) + "mbit", "burst", "64kb", "latency", "100ms"});
+    }
+
+    /// Deletes the namespaces of labs whose process is gone ("igi<pid>-...", no /proc/<pid>).
+    /// A live process's are left alone, whoever it is: pids are reused, and a lab of another
+    /// test running at the same time must keep its hosts.
+    void removeLeftovers() {
+        std::error_code e;
+        for (const auto& entry : std::filesystem::directory_iterator("/run/netns", e)) {
+            const std::string name = entry.path().filename().string();
+            const std::size_t dash = name.find('-');
+            if (name.rfind("igi", 0) != 0 || dash == std::string::npos || dash == 3) continue;
+            const std::string pid = name.substr(3, dash - 3);
+            bool digits = true;
+            for (char c : pid) digits = digits && std::isdigit(static_cast<unsigned char>(c));
+            if (digits && !std::filesystem::exists("/proc/" + pid))
+                run({"ip", "netns", "del", name}, "/dev/null");
+        }
     }
 
   private:
