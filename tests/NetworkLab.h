@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <string>
@@ -82,6 +83,7 @@ class NetworkLab {
                     std::to_string(mbit) + "mbit", "burst", "64kb", "latency", "100ms"});
     }
 
+  private:
     /// Deletes the namespaces of labs whose process is gone ("igi<pid>-...", no /proc/<pid>).
     /// A live process's are left alone, whoever it is: pids are reused, and a lab of another
     /// test running at the same time must keep its hosts.
@@ -92,14 +94,13 @@ class NetworkLab {
             const std::size_t dash = name.find('-');
             if (name.rfind("igi", 0) != 0 || dash == std::string::npos || dash == 3) continue;
             const std::string pid = name.substr(3, dash - 3);
-            bool digits = true;
-            for (char c : pid) digits = digits && std::isdigit(static_cast<unsigned char>(c));
+            const bool digits = std::all_of(pid.begin(), pid.end(),
+                                            [](unsigned char c) { return std::isdigit(c); });
             if (digits && !std::filesystem::exists("/proc/" + pid))
                 run({"ip", "netns", "del", name}, "/dev/null");
         }
     }
 
-  private:
     std::string sw() const { return prefix_ + "sw"; }
 
     bool run(std::vector<std::string> command) { return run(std::move(command), log_); }

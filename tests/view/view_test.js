@@ -220,13 +220,12 @@ async function screenshotDifference(page, a, b) {
     return {mean: sum / n, changed: changed / (n / 3)}; })()`);
 }
 
-// Where the image is on the page, and its size in image pixels: the session's, as the master's
-// status gives it (the <img>'s naturalWidth reads 0 while the next frame loads).
+// Where the image is on the page, and its size in image pixels as the page itself maps clicks
+// (its imageSize(): the session's, since the <img>'s naturalWidth reads 0 while a frame loads).
 async function imageBox(page) {
-  return page.eval(`(() => { const i = document.getElementById("image");
-    const r = i.getBoundingClientRect(), s = igiView.status || igiView.scene;
-    return {left: r.left, top: r.top, scale: r.width / s.width,
-            width: s.width, height: s.height}; })()`);
+  return page.eval(`(() => { const r = document.getElementById("image").getBoundingClientRect();
+    const [width, height] = imageSize();
+    return {left: r.left, top: r.top, scale: r.width / width, width, height}; })()`);
 }
 
 // A click dispatched in the page just after the <img> was given a frame that has not loaded yet
@@ -344,8 +343,8 @@ async function checkLoopbackSession(browser) {
     lastCamera = c;
     return still;
   }, 20);
-  const target = await findPixelOf(m.controlPort, "glass_ball", box);
-  const room = await findPixelOf(m.controlPort, "room", box);
+  const seen = await pickGrid(m.controlPort, box);
+  const target = centreOf(seen.get("glass_ball")), room = centreOf(seen.get("room"));
   check(target !== null && room !== null, "the master's pick finds the glass ball and the room in the image");
   if (target && room) {
     const b = await imageBox(page);
@@ -403,20 +402,26 @@ async function checkLoopbackSession(browser) {
 
 function objectOf(scene, name) { return scene.objects.find((o) => o.name === name); }
 
-// An image position where the master's pick sees `name`, well inside its silhouette so that the
-// page's click there (mapped through the page's layout, rounded by the browser) picks it too: of
-// the points of an 8-pixel grid that the master's pick says are the object's, the one nearest
-// their centroid.
-async function findPixelOf(controlPort, name, box) {
-  const hits = [];
+// What the master's pick sees on an 8-pixel grid over the image: object name -> grid points.
+async function pickGrid(controlPort, box) {
+  const seen = new Map();
   for (let y = 4.5; y < box.height; y += 8)
-    for (let x = 4.5; x < box.width; x += 8)
-      if ((await control(controlPort, {cmd: "pick", x, y})).object === name) hits.push({x, y});
-  if (hits.length === 0) return null;
-  const cx = hits.reduce((s, p) => s + p.x, 0) / hits.length;
-  const cy = hits.reduce((s, p) => s + p.y, 0) / hits.length;
+    for (let x = 4.5; x < box.width; x += 8) {
+      const name = (await control(controlPort, {cmd: "pick", x, y})).object;
+      if (name !== null && name !== undefined) seen.set(name, [...(seen.get(name) || []), {x, y}]);
+    }
+  return seen;
+}
+
+// A point well inside an object's silhouette, so that the page's click there (mapped through the
+// page's layout, rounded by the browser) picks it too: of its grid points, the one nearest their
+// centroid (null for none).
+function centreOf(points) {
+  if (!points || points.length === 0) return null;
+  const cx = points.reduce((s, p) => s + p.x, 0) / points.length;
+  const cy = points.reduce((s, p) => s + p.y, 0) / points.length;
   const d = (p) => (p.x - cx) ** 2 + (p.y - cy) ** 2;
-  return hits.reduce((best, p) => (d(p) < d(best) ? p : best));
+  return points.reduce((best, p) => (d(p) < d(best) ? p : best));
 }
 
 async function checkTokenSession(browser) {
