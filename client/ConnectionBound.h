@@ -30,16 +30,25 @@ struct ConnectionBound {
 
     static ConnectionBound of(float distance2, float minDistance2, float sharpnessBudget,
                               float sharpnessX) {
-        return {distance2 / (minDistance2 * sharpnessX), sharpnessBudget / sharpnessX};
+        const float s = atLeastLambertian(sharpnessX);
+        return {distance2 / (minDistance2 * s), sharpnessBudget / s};
     }
     float kept(float sharpnessY) const {
-        const float byDistance = distanceTerm >= sharpnessY ? 1.0f : distanceTerm / sharpnessY;
+        const float s = atLeastLambertian(sharpnessY);
+        const float byDistance = distanceTerm >= s ? 1.0f : distanceTerm / s;
         return std::min(std::min(1.0f, budgetTerm), byDistance);
     }
     /// Whether some far end of sharpness at most `maxSharpnessY` is not kept whole.
     bool cuts(float maxSharpnessY) const {
-        return budgetTerm < 1.0f || distanceTerm < maxSharpnessY;
+        return budgetTerm < 1.0f || distanceTerm < atLeastLambertian(maxSharpnessY);
     }
+    /// A sharpness below 1 (the side of a glossy surface away from its lobe, where only its
+    /// diffuse share reflects) counts as 1: it would pull the clamp closer than the Lambertian
+    /// one, and the spike it lets through, bounded against the surface's whole albedo, is
+    /// 1 / share times the diffuse lobe's own light (seen on CornellBox-Glossy: a light path
+    /// bouncing in the crease between the glossy sphere and a wall left VPLs at 0.6 dmin from
+    /// the sphere, 90 times the sphere's converged value there).
+    static float atLeastLambertian(float sharpness) { return std::max(1.0f, sharpness); }
 };
 
 inline float keptFraction(float distance2, float minDistance2, float sharpnessBudget,

@@ -236,7 +236,8 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
     float tfar = kInfinity;
     if (!glossy) {
         if (!compensate) return;
-        tfar = std::sqrt(set.minDistance2 * sharpnessX * maxSharpness_);
+        tfar = std::sqrt(set.minDistance2 * ConnectionBound::atLeastLambertian(sharpnessX) *
+                         maxSharpness_);
     }
     const glm::vec3 origin = scene_.offsetOrigin(x.position, x.faceNormal, w);
     SurfacePoint hit;

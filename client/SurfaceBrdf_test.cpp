@@ -144,6 +144,12 @@ TEST(ConnectionBound, ClampAndBudget) {
     EXPECT_FLOAT_EQ(keptFraction(100.0f, dmin2, budget, 8.0f, 1.0f), 0.5f);   // budget / s_x
     EXPECT_EQ(keptFraction(100.0f, dmin2, budget, 1.0f, 8.0f), 1.0f);         // a glossy VPL, far
     EXPECT_FLOAT_EQ(keptFraction(0.04f, dmin2, budget, 1.0f, 8.0f), 0.125f);  // ... and near
+    // A side of a glossy surface away from its lobe (sharpness below 1, its diffuse share) is
+    // clamped as a Lambertian one, never closer: at either end, the clamp of sharpness 1.
+    EXPECT_FLOAT_EQ(keptFraction(0.01f, dmin2, budget, 0.5f, 1.0f), 0.25f);
+    EXPECT_FLOAT_EQ(keptFraction(0.01f, dmin2, budget, 1.0f, 0.5f), 0.25f);
+    EXPECT_FLOAT_EQ(keptFraction(0.01f, dmin2, budget, 0.5f, 0.5f), 0.25f);
+    EXPECT_TRUE(ConnectionBound::of(0.01f, dmin2, budget, 0.5f).cuts(0.5f));
     // The residual of a connection reached by a compensation ray is what the bound removed.
     const ConnectionBound bound = ConnectionBound::of(0.02f, dmin2, budget, 2.0f);
     EXPECT_FLOAT_EQ(bound.kept(1.0f), keptFraction(0.02f, dmin2, budget, 2.0f, 1.0f));
