@@ -125,7 +125,15 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
     sampleDirect(frame, setIndex, set);
     if (lightPaths) walkLightPaths(frame, setIndex, set);
     std::uint32_t shot = 0;
-    auto photons = caustics_.shoot(frame, setIndex, shot, set.buildRays);
+    std::vector<CausticPhoton> photons;
+    if (accumulating && settings_.poolCaustics) {
+        // Accumulated frames gather every set's photons: the progressive filter withdraws the
+        // discontinuity buffer's pooling where a caustic's edges show, and there each pixel
+        // would otherwise see its own set's photons alone.
+        photons = *pooledCaustics(frame, shot, set.buildRays);
+    } else {
+        photons = caustics_.shoot(frame, setIndex, shot, set.buildRays);
+    }
     std::vector<CausticPhoton> indirectPhotons;
     if (accumulating)
         caustics_.shootFromVpls(frame, setIndex, set.indirect,
@@ -138,6 +146,37 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
         std::move(indirectPhotons),
         float(double(settings_.indirectCausticRadius) * scene_.diagonal() * radiusScale));
     return set;
+}
+
+std::shared_ptr<const std::vector<CausticPhoton>> LightingSetBuilder::pooledCaustics(
+    std::uint32_t frame, std::uint32_t& shot, RayCounters& rays) const {
+    const auto sets = std::uint32_t(std::max(1, settings_.setCount()));
+    std::shared_ptr<const Pool> pool;
+    {
+        std::lock_guard lock(poolMutex_);
+        auto it = pools_.find(frame);
+        if (it != pools_.end()) {
+            pool = it->second;
+        } else {
+            auto made = std::make_shared<Pool>();
+            const float share = 1.0f / float(sets);
+            for (std::uint32_t k = 0; k < sets; ++k) {
+                std::uint32_t n = 0;
+                for (CausticPhoton p : caustics_.shoot(frame, k, n, made->rays)) {
+                    p.power *= share;
+                    made->photons.push_back(p);
+                }
+                made->shot += n;
+            }
+            // Tiles of a few frames are in flight at once; older frames are done.
+            pools_.erase(pools_.begin(), pools_.lower_bound(frame > 8 ? frame - 8 : 0));
+            pools_.emplace(frame, made);
+            pool = made;
+        }
+    }
+    shot = pool->shot / sets;
+    rays += pool->rays.share(sets);
+    return {pool, &pool->photons};
 }
 
 void LightingSetBuilder::sampleDirect(std::uint32_t frame, std::uint32_t setIndex,

@@ -2,6 +2,9 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
 
 #include "CausticShooter.h"
 #include "LightingSet.h"
@@ -79,7 +82,19 @@ class LightingSetBuilder {
                           std::uint32_t paths) const;
     const RenderSettings& settings() const { return settings_; }
 
+    /// The caustic photons of every set of `frame`, each carrying 1 / K of its power: what
+    /// every pixel of an accumulated frame gathers from (settings.poolCaustics). Shot once per
+    /// frame by the first set that needs them; `shot` and `rays` receive a set's share.
+    std::shared_ptr<const std::vector<CausticPhoton>> pooledCaustics(std::uint32_t frame,
+                                                                     std::uint32_t& shot,
+                                                                     RayCounters& rays) const;
+
   private:
+    struct Pool {
+        std::vector<CausticPhoton> photons;
+        std::uint32_t shot = 0;
+        RayCounters rays;
+    };
     LightingSet assemble(std::uint32_t frame, std::uint32_t accumulation, std::uint32_t setIndex,
                          bool lightPaths) const;
     void sampleDirect(std::uint32_t frame, std::uint32_t setIndex, LightingSet& set) const;
@@ -92,6 +107,8 @@ class LightingSetBuilder {
     std::uint32_t vplPaths_ = 0;
     std::vector<std::uint32_t> survivors_;
     float minDistance_ = 0;  ///< the connection bound's distance at accumulation 0
+    mutable std::mutex poolMutex_;  ///< guards pools_
+    mutable std::map<std::uint32_t, std::shared_ptr<const Pool>> pools_;  ///< by frame
 };
 
 }  // namespace igi

@@ -166,6 +166,26 @@ TEST(LightingSetBuilder, CausticPowerMatchesTheAnalyticFluxThroughAMirror) {
     // escape upward, so only part of them land, but those that do carry all the power.
     EXPECT_GT(set.caustics.photons().size(), 5000u);
     EXPECT_EQ(set.photonsShot, 20000u);
+
+    // An accumulated frame's set gathers every set's photons, each with 1 / K of its power:
+    // K times the photons, the same flux, and every set of the frame holds the same pool.
+    scene.render.causticPhotons = 2000;
+    InProcessRenderer pooled(scene);
+    const auto& builder = pooled.renderer().builder();
+    const LightingSet own = builder.build(3, 0, 4), first = builder.build(3, 5, 4),
+                      second = builder.build(3, 5, 7);
+    const std::size_t sets = std::size_t(scene.render.setCount());
+    glm::dvec3 pooledTotal(0.0);
+    for (const auto& p : first.caustics.photons()) pooledTotal += glm::dvec3(p.power);
+    EXPECT_GT(first.caustics.photons().size(), (sets - 1) * own.caustics.photons().size());
+    EXPECT_NEAR(pooledTotal.x / (0.8 * intensity * omega), 1.0, 0.01);
+    ASSERT_EQ(first.caustics.photons().size(), second.caustics.photons().size());
+    EXPECT_EQ(first.caustics.photons()[17].position, second.caustics.photons()[17].position);
+    EXPECT_EQ(first.photonsShot, 2000u);  // its share of the shooting
+    scene.render.poolCaustics = false;
+    InProcessRenderer alone(scene);
+    EXPECT_EQ(alone.renderer().builder().build(3, 5, 4).caustics.photons().size(),
+              alone.renderer().builder().build(3, 0, 4).caustics.photons().size());
 }
 
 }  // namespace

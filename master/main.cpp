@@ -112,7 +112,8 @@ int main(int argc, char** argv) {
     auto* sppOpt = app.add_option("--spp", spp, "path tracer samples per pixel per frame");
     auto* interleaveOpt = app.add_option("--interleave", interleave, "interleaving pattern NxM");
     auto* filterOpt = app.add_option("--filter", filter, "discontinuity buffer size NxM");
-    std::string converge, roulette, compensation, progressiveRadius, progressiveFilter;
+    std::string converge, roulette, compensation, progressiveRadius, progressiveFilter,
+        poolCaustics;
     auto* convergeOpt =
         app.add_option("--converge", converge,
                        "on: accumulation converges (every mean below on); off: the paper's "
@@ -128,6 +129,10 @@ int main(int argc, char** argv) {
     auto* progressiveFilterOpt =
         app.add_option("--progressive-filter", progressiveFilter,
                        "on: the discontinuity buffer withdraws where accumulation shows its blur")
+            ->check(CLI::IsMember({"on", "off"}));
+    auto* poolCausticsOpt =
+        app.add_option("--pool-caustics", poolCaustics,
+                       "on: accumulated frames gather every set's caustic photons at each pixel")
             ->check(CLI::IsMember({"on", "off"}));
     auto* compensationOpt = app.add_option("--clamp-compensation", compensation,
                                            "what restores the energy the VPL bound removes")
@@ -221,6 +226,7 @@ int main(int argc, char** argv) {
         if (compensationOpt->count()) render["clamp_compensation"] = compensation;
         if (progressiveRadiusOpt->count()) render["progressive_radius"] = progressiveRadius == "on";
         if (progressiveFilterOpt->count()) render["progressive_filter"] = progressiveFilter == "on";
+        if (poolCausticsOpt->count()) render["pool_caustics"] = poolCaustics == "on";
         for (const auto& n : numerics) {
             if (!n.option->count()) continue;
             if (n.integer && n.value != std::floor(n.value))

@@ -91,6 +91,7 @@ void writeRenderSettings(ByteWriter& out, const RenderSettings& s) {
     out.i32(s.sptPilots);
     out.i32(s.sptBudget);
     out.u8(static_cast<std::uint8_t>(s.lightSampling));
+    out.boolean(s.poolCaustics);
 }
 
 RenderSettings readRenderSettings(ByteReader& in) {
@@ -145,6 +146,7 @@ RenderSettings readRenderSettings(ByteReader& in) {
     if (lightSampling > static_cast<std::uint8_t>(LightSampling::Tree))
         in.fail("unknown light sampling " + std::to_string(lightSampling));
     s.lightSampling = static_cast<LightSampling>(lightSampling);
+    s.poolCaustics = in.boolean();
     return s;
 }
 

@@ -125,6 +125,7 @@ inline SceneData sampleSceneData() {
     m.settings.sptPilots = 3;
     m.settings.sptBudget = 11;
     m.settings.lightSampling = LightSampling::Tree;
+    m.settings.poolCaustics = false;
     m.image = {800, 600, -1.5f};
     m.camera.position = {1.0f, 2.0f, 3.0f};
     m.camera.lookAt = {-1.0f, 0.5f, 0.25f};

@@ -115,6 +115,10 @@ struct RenderSettings {
     /// Their gather radius, a fraction of the scene's diagonal: wider than the caustics', as
     /// the light they carry is smooth (and they are few per set).
     float indirectCausticRadius = 0.05f;
+    /// In accumulated frames every pixel gathers the caustic photons of every set (each with
+    /// 1 / K of its power), not its own set's alone: where the progressive filter withdraws
+    /// the discontinuity buffer (a caustic's edges), a pixel still sees all the frame's photons.
+    bool poolCaustics = true;
     /// Progressive photon mapping (Knaus and Zwicker 2011): the caustic radius of accumulated
     /// frame i is r_i^2 = r_0^2 prod_{k=1..i} (k + alpha) / (k + 1) (render/ProgressiveSchedule.h).
     bool progressiveRadius = true;

@@ -92,6 +92,7 @@ void readConvergence(const JsonNode& section, RenderSettings& s) {
         s.indirectCausticPhotons = on ? defaults.indirectCausticPhotons : 0;
         s.progressiveRadius = on;
         s.progressiveFilter = on;
+        s.poolCaustics = on;
     }
     if (auto v = section.find("roulette")) s.roulette = v->boolean();
     readInt(section, "roulette_max_length", 2, 1024, s.rouletteMaxLength);
@@ -107,6 +108,7 @@ void readConvergence(const JsonNode& section, RenderSettings& s) {
     readFloat(section, "glossy_bound", NumberRange::closed(1, 1e6), s.glossyBound);
     if (auto v = section.find("progressive_radius")) s.progressiveRadius = v->boolean();
     if (auto v = section.find("progressive_filter")) s.progressiveFilter = v->boolean();
+    if (auto v = section.find("pool_caustics")) s.poolCaustics = v->boolean();
     // How fast the caustic radius (and a shrinking clamp) shrinks; Knaus and Zwicker use 2/3.
     readFloat(section, "progressive_alpha", NumberRange::open(0, 1), s.progressiveAlpha);
 }
@@ -159,6 +161,7 @@ void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& setting
                        "glossy_bound",
                        "progressive_radius",
                        "progressive_filter",
+                       "pool_caustics",
                        "progressive_alpha"});
     // Read into a copy so that a failure leaves `settings` untouched.
     RenderSettings s = settings;

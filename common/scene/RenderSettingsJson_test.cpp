@@ -38,6 +38,25 @@ TEST(RenderSettingsJson, LightSamplingChoices) {
     EXPECT_FALSE(usesLightTree(LightSampling::Power, 1000));
 }
 
+// "converge" sets every mean of the converging estimator at once; keys beside it win.
+TEST(RenderSettingsJson, ConvergeSetsEveryMeanAndKeysBesideItWin) {
+    RenderSettings s;
+    applyRenderSettingsJson(nlohmann::json{{"converge", false}}, s, "f", "");
+    EXPECT_FALSE(s.roulette);
+    EXPECT_EQ(s.clampCompensation, ClampCompensation::Off);
+    EXPECT_EQ(s.indirectCausticPhotons, 0);
+    EXPECT_FALSE(s.progressiveRadius);
+    EXPECT_FALSE(s.progressiveFilter);
+    EXPECT_FALSE(s.poolCaustics);
+    applyRenderSettingsJson(nlohmann::json{{"converge", true}, {"pool_caustics", false}}, s, "f",
+                            "");
+    EXPECT_TRUE(s.roulette);
+    EXPECT_TRUE(s.progressiveFilter);
+    EXPECT_FALSE(s.poolCaustics);
+    applyRenderSettingsJson(nlohmann::json{{"pool_caustics", true}}, s, "f", "");
+    EXPECT_TRUE(s.poolCaustics);
+}
+
 TEST(RenderSettingsJson, ErrorsUseTheGivenFileAndPrefix) {
     RenderSettings s;
     auto apply = [&](const char* text) {
