@@ -196,7 +196,8 @@ void CausticShooter::trace(glm::vec3 origin, glm::vec3 direction, glm::vec3 powe
         const Lobes lobes = lobesAt(hit, -direction);
         // A non-delta surface reached through mirrors and glass stores the photon (L S+ D: a
         // caustic); what it reflects from there on is the VPLs' business.
-        if (bounce > 1 && lobes.hasNonDelta()) out.push_back({hit.position, direction, power});
+        if (bounce > 1 && lobes.hasNonDelta())
+            out.push_back({hit.position, direction, power, lobes.faceNormal});
         // Only delta continuations make caustics.
         Lobe lobe;
         float probability = 0;

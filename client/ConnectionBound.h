@@ -1,8 +1,20 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 
 namespace igi {
+
+/// How the bound's distance term falls off inside dmin.
+enum class BoundShape : std::uint8_t {
+    /// Instant radiosity's clamp: G <= cos cos / dmin^2 (kept = d^2 / dmin^2 inside dmin).
+    Clamp,
+    /// Instant caching's bounded geometry term (paper 003, equations 2 and 3): the connection
+    /// is kept whole beyond 1.2 dmin, dropped inside 0.8 dmin, and between the two by the
+    /// smoothstep 3 t^2 - 2 t^3 of t = (d / dmin - 0.8) / 0.4.
+    Smooth,
+};
 
 /// The bound on a VPL connection: instant radiosity's clamp and its glossy counterpart as one
 /// rule. Of the connection between a point x and a VPL y at distance d, the fraction
@@ -22,25 +34,37 @@ namespace igi {
 /// The rest, 1 - kept, is what the Kollig-Keller compensation (EndPointShader) adds back by a
 /// continuation ray sampled from the BRDF: for a sharp lobe that is most of the light, which is
 /// what BRDF sampling is good at.
+/// With BoundShape::Smooth the distance term is the paper 003's smoothstep of
+/// d / (dmin sqrt(s_x s_y)) instead of the clamp's min(1, d^2 / (dmin^2 s_x s_y)).
 struct ConnectionBound {
-    /// min(d^2 / (dmin^2 s_x), S / s_x): what the bound leaves of a connection ending on a
-    /// surface of sharpness 1; kept = min(1, distanceTerm / s_y, budgetTerm).
+    /// d^2 / (dmin^2 s_x) and S / s_x: what the bound leaves of a connection ending on a
+    /// surface of sharpness 1 is min(1, shape(distanceTerm), budgetTerm).
     float distanceTerm = 0;
     float budgetTerm = 0;
+    BoundShape shape = BoundShape::Clamp;
 
     static ConnectionBound of(float distance2, float minDistance2, float sharpnessBudget,
-                              float sharpnessX) {
+                              float sharpnessX, BoundShape shape = BoundShape::Clamp) {
         const float s = atLeastLambertian(sharpnessX);
-        return {distance2 / (minDistance2 * s), sharpnessBudget / s};
+        return {distance2 / (minDistance2 * s), sharpnessBudget / s, shape};
     }
     float kept(float sharpnessY) const {
-        const float s = atLeastLambertian(sharpnessY);
-        const float byDistance = distanceTerm >= s ? 1.0f : distanceTerm / s;
+        const float t = distanceTerm / atLeastLambertian(sharpnessY);
+        const float byDistance = shape == BoundShape::Smooth ? smoothKept(t) : std::min(1.0f, t);
         return std::min(std::min(1.0f, budgetTerm), byDistance);
     }
     /// Whether some far end of sharpness at most `maxSharpnessY` is not kept whole.
     bool cuts(float maxSharpnessY) const {
-        return budgetTerm < 1.0f || distanceTerm < atLeastLambertian(maxSharpnessY);
+        return budgetTerm < 1.0f || distanceTerm < reach2(shape) * atLeastLambertian(maxSharpnessY);
+    }
+    /// (d / dmin)^2 beyond which a Lambertian connection is kept whole.
+    static float reach2(BoundShape shape) { return shape == BoundShape::Smooth ? 1.44f : 1.0f; }
+    /// The paper's f(0.8, 1.2, x) of x = sqrt(t), t = d^2 / (dmin^2 s_x s_y).
+    static float smoothKept(float t) {
+        if (t >= 1.44f) return 1.0f;
+        if (t <= 0.64f) return 0.0f;
+        const float u = (std::sqrt(t) - 0.8f) * 2.5f;
+        return u * u * (3.0f - 2.0f * u);
     }
     /// A sharpness below 1 (the side of a glossy surface away from its lobe, where only its
     /// diffuse share reflects) counts as 1: it would pull the clamp closer than the Lambertian
@@ -52,8 +76,9 @@ struct ConnectionBound {
 };
 
 inline float keptFraction(float distance2, float minDistance2, float sharpnessBudget,
-                          float sharpnessX, float sharpnessY) {
-    return ConnectionBound::of(distance2, minDistance2, sharpnessBudget, sharpnessX)
+                          float sharpnessX, float sharpnessY,
+                          BoundShape shape = BoundShape::Clamp) {
+    return ConnectionBound::of(distance2, minDistance2, sharpnessBudget, sharpnessX, shape)
         .kept(sharpnessY);
 }
 

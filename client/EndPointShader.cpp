@@ -15,8 +15,6 @@ namespace igi {
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-// Shadow rays stop this fraction short of a VPL, which sits on a surface of its own.
-constexpr float kShadowShrink = 1e-4f;
 
 // The part of a connection arriving from a direction of sharpness s that the bound removed,
 // for a point reached by a compensation ray (`residual`); 1 otherwise.
@@ -34,7 +32,7 @@ class ShadowBatch {
     void add(glm::vec3 direction, float distance, glm::vec3 irradiance, glm::vec3 glossy,
              glm::vec3& irradianceSum, glm::vec3& glossySum) {
         directions_[pending_] = direction;
-        tfar_[pending_] = distance * (1.0f - kShadowShrink);
+        tfar_[pending_] = distance * (1.0f - kVplShadowShrink);
         irradiance_[pending_] = irradiance;
         glossy_[pending_] = glossy;
         if (++pending_ == kPacket) flush(irradianceSum, glossySum);
@@ -144,8 +142,17 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
         if (s.pdf > 0) addDirect(directLightVpl(s, scene_, directSamples_));
     }
 
-    // Indirect light: every connection bounded, through the BRDFs at both ends.
+    // Indirect light: every connection bounded, through the BRDFs at both ends; at a
+    // Lambertian point, from the method's records where it keeps them (instant caching).
     const bool lambertian = !glossy && residual == nullptr;
+    // A glossy point's Lambertian lobe too, where the method has no VPLs for its glossy lobe
+    // (that lobe's continuation ray takes the surfaces' radiance from the method instead).
+    if (residual == nullptr && set.indirectIrradiance && (!glossy || set.indirect.empty())) {
+        batch.flush(sums.irradiance, sums.glossy);
+        sums.irradiance += set.indirectIrradiance->irradiance(x.position, x.faceNormal, counters);
+        return;
+    }
+    const bool clamp = set.boundShape == BoundShape::Clamp;
     for (const Vpl& v : set.indirect) {
         const glm::vec3 toLight = v.position - origin;
         const float d2 = glm::dot(toLight, toLight);
@@ -156,7 +163,7 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
         if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) continue;
         const float cosY = -glm::dot(v.normal, w);
         if (cosY <= 0) continue;
-        if (lambertian && !v.glossy()) {
+        if (lambertian && clamp && !v.glossy()) {
             // Lambertian at both ends (sharpness 1, within any budget): the paper's clamp,
             // G <= cos cos / dmin^2. The common case, kept apart for speed.
             const float g = cosX * cosY / std::max(d2, set.minDistance2);
@@ -173,8 +180,8 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
         }
         const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
         const float sharpnessX = glossy ? b.sharpness(cosAlpha) : b.diffuseShare;
-        const float kept =
-            keptFraction(d2, set.minDistance2, set.sharpnessBudget, sharpnessX, sharpnessY);
+        const float kept = keptFraction(d2, set.minDistance2, set.sharpnessBudget, sharpnessX,
+                                        sharpnessY, set.boundShape);
         const float r = residualWeight(residual, sharpnessX);
         if (!(r > 0)) continue;
         const glm::vec3 e = intensity * (cosX * cosY / d2 * kept * r);
@@ -237,7 +244,7 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
     if (!glossy) {
         if (!compensate) return;
         tfar = std::sqrt(set.minDistance2 * ConnectionBound::atLeastLambertian(sharpnessX) *
-                         maxSharpness_);
+                         maxSharpness_ * ConnectionBound::reach2(set.boundShape));
     }
     const glm::vec3 origin = scene_.offsetOrigin(x.position, x.faceNormal, w);
     SurfacePoint hit;
@@ -258,12 +265,20 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
     }
     const Lobes lobes = lobesAt(hit, wy);
 
+    // The light the surface it lands on sends back, where the method knows it (a photon map):
+    // a glossy lobe has no VPLs of its own then.
+    if (glossy && set.indirectIrradiance && set.indirectIrradiance->knowsSurfaceRadiance() &&
+        lobes.hasNonDelta())
+        sums.glossy +=
+            glossyF * scale *
+            set.indirectIrradiance->surfaceRadiance(hit.position, lobes.faceNormal, counters);
+
     // Kollig-Keller: the part of the connections between x and this point that the bound
     // removed, estimated with the point's own light, each incoming direction weighted by what
     // the bound removed of it.
     if (compensate && lobes.hasNonDelta()) {
-        const ConnectionBound bound =
-            ConnectionBound::of(d2, set.minDistance2, set.sharpnessBudget, sharpnessX);
+        const ConnectionBound bound = ConnectionBound::of(d2, set.minDistance2, set.sharpnessBudget,
+                                                          sharpnessX, set.boundShape);
         if (bound.cuts(lobes.brdf.maxSharpness())) {
             const EndPointLight l =
                 shadeAt(ShadingPoint::at(hit, lobes), set, &random, depth + 1, &bound, counters);

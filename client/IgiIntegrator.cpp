@@ -74,6 +74,7 @@ PixelResult IgiIntegrator::shade(int x, int y, std::uint32_t pixelIndex, std::ui
             result.glossy = e.throughput * light.glossy;
             result.normal = e.lobes.normal;
             result.depth = e.pathLength;
+            result.firstHit = i == 0;
         } else {
             result.unfiltered += e.throughput * light.radiance(e.lobes.brdf);
         }

@@ -4,11 +4,36 @@
 #include <limits>
 #include <vector>
 
+#include <memory>
+
+#include "ConnectionBound.h"
 #include "SurfacePoint.h"
 #include "Vpl.h"
 #include "igi/CausticGrid.h"
 
 namespace igi {
+
+/// Where a method keeps the indirect light of Lambertian surfaces when it does not connect each
+/// pixel to its set's VPLs (instant caching's records, the photon map's final gathers): the
+/// irradiance E (not divided by pi) at a point. Thread-safe.
+class IndirectIrradiance {
+  public:
+    virtual ~IndirectIrradiance() = default;
+    /// E at `position`, on the side that the unit geometric normal `faceNormal` points to.
+    virtual glm::vec3 irradiance(glm::vec3 position, glm::vec3 faceNormal,
+                                 RayCounters& counters) const = 0;
+    /// Whether the method also knows the radiance every surface sends out (a photon map does):
+    /// then a glossy lobe's continuation ray takes it where it lands (surfaceRadiance), as the
+    /// glossy lobe has no VPLs to connect to.
+    virtual bool knowsSurfaceRadiance() const { return false; }
+    virtual glm::vec3 surfaceRadiance(glm::vec3 position, glm::vec3 faceNormal,
+                                      RayCounters& counters) const {
+        (void)position, (void)faceNormal, (void)counters;
+        return glm::vec3(0.0f);
+    }
+};
+
+class ScreenCaustics;
 
 /// Everything the pixels of one interleaving identification k use in one frame: the set P_k
 /// (points on the lights for direct light, VPLs for indirect light) and the set C_k of caustic
@@ -30,6 +55,13 @@ struct LightingSet {
     /// this frame.
     float minDistance2 = 0;
     float sharpnessBudget = std::numeric_limits<float>::infinity();
+    BoundShape boundShape = BoundShape::Clamp;
+    /// When set, Lambertian end points take the light of the indirect VPLs from here instead
+    /// of connecting to `indirect` (which still lights glossy end points and the compensation).
+    std::shared_ptr<const IndirectIrradiance> indirectIrradiance;
+    /// When set, the caustics of the pixels that see a surface directly come from this screen-
+    /// space filter (Larsen and Christensen) instead of `caustics`, which is then empty.
+    std::shared_ptr<const ScreenCaustics> screenCaustics;
     /// Whether the settings ask for indirect light at all (VPL paths longer than the light):
     /// the bound's compensation only completes the VPLs' estimate.
     bool indirectLight = false;

@@ -82,8 +82,9 @@ LightingSet LightingSetBuilder::build(std::uint32_t frame, std::uint32_t accumul
     return assemble(frame, accumulation, setIndex, true);
 }
 
-LightingSet LightingSetBuilder::buildDirect(std::uint32_t frame, std::uint32_t setIndex) const {
-    return assemble(frame, 0, setIndex, false);
+LightingSet LightingSetBuilder::buildDirect(std::uint32_t frame, std::uint32_t setIndex,
+                                            bool caustics) const {
+    return assemble(frame, 0, setIndex, false, caustics);
 }
 
 LightingSet LightingSetBuilder::buildWith(std::uint32_t frame, std::uint32_t setIndex,
@@ -96,7 +97,8 @@ LightingSet LightingSetBuilder::buildWith(std::uint32_t frame, std::uint32_t set
 }
 
 LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accumulation,
-                                         std::uint32_t setIndex, bool lightPaths) const {
+                                         std::uint32_t setIndex, bool lightPaths,
+                                         bool caustics) const {
     LightingSet set;
     // The first frame after a change is what a user sees while moving: it stays the paper's
     // estimator, as fast and as clean (the roulette's long paths are few and heavy, the
@@ -126,12 +128,12 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
     if (lightPaths) walkLightPaths(frame, setIndex, set);
     std::uint32_t shot = 0;
     std::vector<CausticPhoton> photons;
-    if (accumulating && settings_.poolCaustics) {
+    if (caustics && accumulating && settings_.poolCaustics) {
         // Accumulated frames gather every set's photons: the progressive filter withdraws the
         // discontinuity buffer's pooling where a caustic's edges show, and there each pixel
         // would otherwise see its own set's photons alone.
         photons = *pooledCaustics(frame, shot, set.buildRays);
-    } else {
+    } else if (caustics) {
         photons = caustics_.shoot(frame, setIndex, shot, set.buildRays);
     }
     std::vector<CausticPhoton> indirectPhotons;
@@ -213,6 +215,29 @@ void LightingSetBuilder::walkLightPaths(std::uint32_t frame, std::uint32_t setIn
     set.lightPaths = vplPaths_;
     traceLightPaths(sampler, PathEnd::KellerWalk, roulette, set.buildRays,
                     [&set](const Vpl& v) { set.indirect.push_back(v); });
+}
+
+std::vector<LightingSetBuilder::NamedVpl> LightingSetBuilder::namedVpls(SampleStream stream,
+                                                                        std::uint32_t frame,
+                                                                        bool roulette,
+                                                                        std::uint32_t setIndex,
+                                                                        RayCounters& rays) const {
+    std::vector<NamedVpl> out;
+    const int maxLength = maxLightPathLength(roulette);
+    if (vplPaths_ == 0 || maxLength < 2 || lights_.empty()) return out;
+    const LightPathSampler sampler(settings_.seed, frame, stream, setIndex, vplPaths_,
+                                   std::uint32_t(maxLength));
+    std::uint32_t path = 0, vertex = 0;
+    traceLightPaths(
+        sampler, PathEnd::KellerWalk, roulette, rays,
+        [&](const Vpl& v) {
+            out.push_back({vplId(setIndex, path, vertex), v});
+        },
+        [&](std::uint32_t j, const SurfacePoint&) {
+            if (j != path) path = j, vertex = 0;
+            ++vertex;
+        });
+    return out;
 }
 
 void LightingSetBuilder::traceLightPaths(const LightPathNumbers& sampler, PathEnd end,

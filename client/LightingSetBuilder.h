@@ -12,6 +12,7 @@
 #include "TraceableScene.h"
 #include "render/RenderSettings.h"
 #include "sampling/LightPathNumbers.h"
+#include "sampling/Scramble.h"
 
 namespace igi {
 
@@ -72,10 +73,27 @@ class LightingSetBuilder {
     void traceLightPaths(const LightPathNumbers& sampler, PathEnd end, bool roulette,
                          RayCounters& rays, const std::function<void(const Vpl&)>& deposit,
                          const Visit& visit = {}) const;
+    /// A VPL with a name that survives a scene change: the set, the light path and the vertex
+    /// (surfaces met, mirrors and glass included) it was deposited at. A path that meets the
+    /// same surfaces after a change deposits VPLs of the same names.
+    struct NamedVpl {
+        std::uint64_t id = 0;
+        Vpl vpl;
+    };
+    static std::uint64_t vplId(std::uint32_t setIndex, std::uint32_t path, std::uint32_t vertex) {
+        return (std::uint64_t(setIndex) << 40) | (std::uint64_t(path) << 12) | vertex;
+    }
+    /// The VPLs of set k's light paths as walkLightPaths traces them, but with the numbers of
+    /// `stream` in `frame` and Russian roulette as asked, each named.
+    std::vector<NamedVpl> namedVpls(SampleStream stream, std::uint32_t frame, bool roulette,
+                                    std::uint32_t setIndex, RayCounters& rays) const;
+
     /// The set of k as build() makes it, but without VPLs from light paths: the light samples
     /// and the caustic photons of the frame's first image, for methods whose indirect light
     /// comes from elsewhere.
-    LightingSet buildDirect(std::uint32_t frame, std::uint32_t setIndex) const;
+    /// Without `caustics`, no caustic photons either (a method that has its own).
+    LightingSet buildDirect(std::uint32_t frame, std::uint32_t setIndex,
+                            bool caustics = true) const;
     /// buildDirect's set with `indirect` as its VPLs (the `paths` light paths behind them): the
     /// first frame of a method that keeps its indirect light across frames.
     LightingSet buildWith(std::uint32_t frame, std::uint32_t setIndex, std::vector<Vpl> indirect,
@@ -96,7 +114,7 @@ class LightingSetBuilder {
         RayCounters rays;
     };
     LightingSet assemble(std::uint32_t frame, std::uint32_t accumulation, std::uint32_t setIndex,
-                         bool lightPaths) const;
+                         bool lightPaths, bool caustics = true) const;
     void sampleDirect(std::uint32_t frame, std::uint32_t setIndex, LightingSet& set) const;
     void walkLightPaths(std::uint32_t frame, std::uint32_t setIndex, LightingSet& set) const;
 
@@ -106,7 +124,7 @@ class LightingSetBuilder {
     CausticShooter caustics_;
     std::uint32_t vplPaths_ = 0;
     std::vector<std::uint32_t> survivors_;
-    float minDistance_ = 0;  ///< the connection bound's distance at accumulation 0
+    float minDistance_ = 0;         ///< the connection bound's distance at accumulation 0
     mutable std::mutex poolMutex_;  ///< guards pools_
     mutable std::map<std::uint32_t, std::shared_ptr<const Pool>> pools_;  ///< by frame
 };

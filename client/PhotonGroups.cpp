@@ -24,10 +24,6 @@ bool moved(const SceneState& then, const SceneState& now, std::uint32_t mesh) {
     return mesh < then.transforms.size() && then.transforms[mesh] != now.transforms[mesh];
 }
 
-bool lightingEqual(const SceneState& a, const SceneState& b) {
-    return a.transforms == b.transforms && !lightsOrMaterialsDiffer(a, b);
-}
-
 bool anyMoved(const SceneState& then, const SceneState& now,
               const std::vector<std::uint32_t>& meshes) {
     return std::any_of(meshes.begin(), meshes.end(),
@@ -112,7 +108,7 @@ std::shared_ptr<const PhotonGroups> PhotonGroups::change(const GroupTracer& trac
     marked->scene_ = tracer.sharedState();
     // Every group was checked against a state that lights the scene the same (the camera alone
     // moved): nothing new to detect.
-    const bool sameLight = lightingEqual(*scene_, tracer.state());
+    const bool sameLight = scene_->sameLighting(tracer.state());
     for (std::size_t g = 0; g < groups_.size() && !sameLight; ++g) {
         if (invalid_[g]) continue;
         const bool touched = groupTouched(*groups_[g], tracer.state(), [&] {

@@ -15,6 +15,9 @@ struct PixelResult {
     float depth = std::numeric_limits<float>::infinity();
     glm::vec3 unfiltered{0.0f};
     glm::vec3 glossy{0.0f};
+    /// Whether the filtered end point is the eye ray's first hit (not seen through a mirror or
+    /// glass): screen-space caustics apply to it.
+    bool firstHit = false;
 };
 
 }  // namespace igi

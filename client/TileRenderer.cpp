@@ -5,26 +5,33 @@
 #include <future>
 #include <mutex>
 
+#include "CacheLighting.h"
 #include "IgiLighting.h"
+#include "PhotonMapLighting.h"
+#include "ScreenCaustics.h"
 #include "SelectiveLighting.h"
 #include "StreamLighting.h"
+#include "math/Warp.h"
 
 namespace igi {
 namespace {
 
 constexpr int kChunkPixels = 64;  // small enough to balance load, large enough to amortize
 
-std::unique_ptr<LightingMethod> makeLightingMethod(const LightingSetBuilder& builder,
-                                                   const TraceableScene& scene,
-                                                   const SceneState& state,
-                                                   const RenderSettings& settings,
-                                                   const LightingContext& context) {
+std::unique_ptr<LightingMethod> makeLightingMethod(
+    const LightingSetBuilder& builder, const TraceableScene& scene, const SceneState& state,
+    const RenderSettings& settings, const ImageSettings& image, const LightingContext& context) {
     if (settings.integrator == IntegratorKind::Path) return std::make_unique<IgiLighting>(builder);
     switch (settings.gi) {
         case GiMode::Stream:
             return std::make_unique<StreamLighting>(builder, scene, state, settings, context);
         case GiMode::Spt:
             return std::make_unique<SelectiveLighting>(builder, state, settings, context);
+        case GiMode::Cache:
+            return std::make_unique<CacheLighting>(builder, scene, state, settings, context);
+        case GiMode::PhotonMap:
+            return std::make_unique<PhotonMapLighting>(builder, scene, state, settings, image,
+                                                       context);
         case GiMode::Igi:
             break;
     }
@@ -54,7 +61,7 @@ TileRenderer::TileRenderer(const TraceableScene& scene, const SceneState& state,
       camera_(state.camera, image.width, image.height),
       lights_(scene, state.pointLights, settings.lightSampling),
       builder_(scene, lights_, settings),
-      method_(makeLightingMethod(builder_, scene, state, settings, context)),
+      method_(makeLightingMethod(builder_, scene, state, settings, image, context)),
       cache_(*method_),
       igi_(scene, lights_, settings, camera_),
       path_(scene, lights_, settings, camera_) {}
@@ -120,8 +127,13 @@ void TileRenderer::renderChunk(TileJob& job, int begin, int end) {
             std::uint32_t(set->caustics.photons().size() + set->indirectCaustics.photons().size());
         for (int i = begin; i < end; ++i) {
             const int x = job.tile.pixelX(i, n), y = job.tile.pixelY(i, n, m);
-            const PixelResult r =
+            PixelResult r =
                 igi_.shade(x, y, std::uint32_t(y * image_.width + x), job.frame, *set, counters);
+            if (set->screenCaustics && r.firstHit) {
+                const ScreenCaustics& c = *set->screenCaustics;
+                r.irradiance +=
+                    kInvPi * c.irradiance(x, y, c.footprint(x, y, r.depth, r.normal), counters);
+            }
             out.irradiance[i] = r.irradiance;
             out.reflectance[i] = r.reflectance;
             out.normal[i] = r.normal;

@@ -17,13 +17,16 @@ glm::vec3 transformPoint(const glm::mat4& m, glm::vec3 p) {
     return glm::vec3(m * glm::vec4(p, 1.0f));
 }
 
-// The unit square onto the quad light: x along edge1, y along edge2, z along its normal.
-glm::mat4 quadLightMatrix(const QuadLight& q) {
+}  // namespace
+
+glm::mat4 TraceableScene::quadLightMatrix(const QuadLight& q) {
     const glm::vec3 n = glm::cross(q.edge1, q.edge2);
     const float len = glm::length(n);
     return glm::mat4(glm::vec4(q.edge1, 0), glm::vec4(q.edge2, 0),
                      glm::vec4(len > 0 ? n / len : n, 0), glm::vec4(q.corner, 1));
 }
+
+namespace {
 
 Material quadLightMaterial(const QuadLight& q) {
     Material m;

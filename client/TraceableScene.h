@@ -57,6 +57,9 @@ class TraceableScene {
     std::vector<WorldTriangle> specularTriangles() const;
 
     const std::vector<Material>& materials() const { return materials_; }
+    const SceneGeometry& geometry() const { return geometry_; }
+    /// The unit square onto a quad light: x along edge1, y along edge2, z along its normal.
+    static glm::mat4 quadLightMatrix(const QuadLight& q);
     /// The top-level Embree scene, for benchmarks that trace it directly.
     RTCScene embreeScene() const { return top_; }
     /// Index of the first material made for the quad lights; quad light i uses this + i.

@@ -33,6 +33,11 @@ struct Vpl {
     float areaPdf = 0;
 
     bool glossy() const { return glossyShare > 0; }
+    bool operator==(const Vpl&) const = default;
 };
+
+/// Shadow rays toward a VPL stop this fraction of the distance short of it: it sits on a
+/// surface of its own.
+constexpr float kVplShadowShrink = 1e-4f;
 
 }  // namespace igi

@@ -27,15 +27,19 @@ using Clock = std::chrono::steady_clock;
 /// The epochs of history a joining client replays to hold the lighting the others hold:
 /// photon streaming's pool spans the last stream_window epochs (the oldest of which a joiner
 /// fills whole, as every client filled epoch 0); selective photon tracing's depends on every
-/// epoch since the session began; IGI keeps nothing.
+/// epoch since the session began, and so does simulated photon mapping's emission (each frame
+/// checks photons round robin); IGI keeps nothing, and instant caching's records are a
+/// function of the current state alone (a joiner computes them anew, to the same bits).
 std::uint32_t joinHistoryDepth(const RenderSettings& s) {
     if (s.integrator == IntegratorKind::Path) return 0;
     switch (s.gi) {
         case GiMode::Stream:
             return std::uint32_t(std::max(0, s.streamWindow - 1));
         case GiMode::Spt:
+        case GiMode::PhotonMap:
             return proto::kMaxHistoryEpochs;
         case GiMode::Igi:
+        case GiMode::Cache:
             break;
     }
     return 0;
@@ -227,10 +231,11 @@ void Master::onHello(Session& s, const proto::Hello& hello) {
     sceneData_.baseFirstFrame = join.baseFirstFrame;
     sceneData_.history.clear();
     for (auto& e : join.history) sceneData_.history.push_back({e.firstFrame, std::move(e.changes)});
-    if (scene_.render.gi == GiMode::Spt && !timeline_->historyComplete())
+    if ((scene_.render.gi == GiMode::Spt || scene_.render.gi == GiMode::PhotonMap) &&
+        !timeline_->historyComplete())
         spdlog::warn(
             "client {} joins at epoch {}, past the {} epochs of history a joiner replays: its "
-            "path groups start from epoch {}, so its tiles may be lit differently from the "
+            "photon groups start from epoch {}, so its tiles may be lit differently from the "
             "other clients' (docs/MODES.md)",
             s.id, timeline_->epoch(), proto::kMaxHistoryEpochs,
             timeline_->epoch() - sceneData_.history.size());
@@ -765,9 +770,8 @@ nlohmann::json settingsJson(const RenderSettings& s) {
         return {{"integrator", "path"},
                 {"samples_per_pixel", s.pathSamples},
                 {"max_path_length", s.maxPathLength}};
-    const char* gi = s.gi == GiMode::Spt ? "spt" : s.gi == GiMode::Stream ? "stream" : "igi";
     nlohmann::json j{{"integrator", "igi"},
-                     {"gi", gi},
+                     {"gi", giModeName(s.gi)},
                      {"interleave", fmt::format("{}x{}", s.interleaveX, s.interleaveY)},
                      {"direct_samples", s.directSamples},
                      {"caustic_photons", s.causticPhotons},
@@ -777,6 +781,11 @@ nlohmann::json settingsJson(const RenderSettings& s) {
     if (s.gi == GiMode::Spt) j["spt_groups"] = s.sptGroups, j["spt_budget"] = s.sptBudget;
     if (s.gi == GiMode::Stream)
         j["stream_vsls"] = s.streamVsls, j["stream_window"] = s.streamWindow;
+    if (s.gi == GiMode::Cache)
+        j["cache_spacing"] = s.cacheSpacing, j["cache_radius"] = s.cacheRadius;
+    if (s.gi == GiMode::PhotonMap)
+        j["photonmap_photons"] = s.photonmapGroups * s.photonmapPhotons,
+        j["photonmap_caustics"] = s.photonmapScreenCaustics ? "screen" : "grid";
     return j;
 }
 

@@ -100,9 +100,12 @@ int main(int argc, char** argv) {
     auto* giOpt = app.add_option("--gi", gi,
                                  "GI mode: igi (fresh light paths every frame), spt (selective "
                                  "photon tracing: only the path groups a change touches traced "
-                                 "again) or stream (photon streaming onto surface lights); "
-                                 "docs/MODES.md")
-                      ->check(CLI::IsMember({"igi", "spt", "stream"}));
+                                 "again), stream (photon streaming onto surface lights), cache "
+                                 "(instant caching: VPL light cached at sites and "
+                                 "interpolated) or photonmap (Larsen and Christensen: selective "
+                                 "photon emission, final gather at the sites, caustics filtered "
+                                 "in screen space); docs/MODES.md")
+                      ->check(CLI::IsMember({"igi", "spt", "stream", "cache", "photonmap"}));
     std::string lightSampling;
     auto* lightSamplingOpt =
         app.add_option("--light-sampling", lightSampling,
@@ -130,6 +133,12 @@ int main(int argc, char** argv) {
         app.add_option("--progressive-filter", progressiveFilter,
                        "on: the discontinuity buffer withdraws where accumulation shows its blur")
             ->check(CLI::IsMember({"on", "off"}));
+    std::string photonmapCaustics;
+    auto* photonmapCausticsOpt =
+        app.add_option("--photonmap-caustics", photonmapCaustics,
+                       "--gi photonmap: caustics filtered in screen space (the paper's) or "
+                       "gathered from the hashed grid (IGI's)")
+            ->check(CLI::IsMember({"screen", "grid"}));
     auto* poolCausticsOpt =
         app.add_option("--pool-caustics", poolCaustics,
                        "on: accumulated frames gather every set's caustic photons at each pixel")
@@ -181,6 +190,18 @@ int main(int argc, char** argv) {
         {"--spt-pilots", "spt_pilots", true,
          "--gi spt: pilot paths per group, traced on every change to detect it"},
         {"--spt-budget", "spt_budget", true, "--gi spt: groups traced again per frame at most"},
+        {"--cache-spacing", "cache_spacing", false,
+         "--gi cache, photonmap: distance between cache sites, fraction of the scene diagonal"},
+        {"--cache-radius", "cache_radius", false,
+         "--gi cache, photonmap: interpolation radius, in site spacings"},
+        {"--photonmap-groups", "photonmap_groups", true,
+         "--gi photonmap: photon groups of the selective emission"},
+        {"--photonmap-photons", "photonmap_photons", true,
+         "--gi photonmap: photons per group (one of each checked per frame)"},
+        {"--photonmap-neighbours", "photonmap_neighbours", true,
+         "--gi photonmap: photon hits in a radiance estimate"},
+        {"--photonmap-gather", "photonmap_gather", true,
+         "--gi photonmap: final gather rays per site"},
         {"--tile-size", "tile_size", true, "tile edge in pixels of one k"},
         {"--seed", "seed", true, "session seed of every random bit vector"},
     };
@@ -227,6 +248,7 @@ int main(int argc, char** argv) {
         if (progressiveRadiusOpt->count()) render["progressive_radius"] = progressiveRadius == "on";
         if (progressiveFilterOpt->count()) render["progressive_filter"] = progressiveFilter == "on";
         if (poolCausticsOpt->count()) render["pool_caustics"] = poolCaustics == "on";
+        if (photonmapCausticsOpt->count()) render["photonmap_caustics"] = photonmapCaustics;
         for (const auto& n : numerics) {
             if (!n.option->count()) continue;
             if (n.integer && n.value != std::floor(n.value))

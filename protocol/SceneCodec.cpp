@@ -10,7 +10,7 @@ namespace {
 
 // A new field in one of these structs must be added to the codec and to docs/PROTOCOL.md, or
 // it silently never reaches the clients. These sizes make the compiler say so (x86-64 / LP64).
-static_assert(sizeof(RenderSettings) == 144, "RenderSettings changed: update SceneCodec.cpp");
+static_assert(sizeof(RenderSettings) == 176, "RenderSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(ImageSettings) == 12, "ImageSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(Camera) == 40, "Camera changed: update SceneCodec.cpp");
 static_assert(sizeof(SceneBundle) == 2 * sizeof(std::string) + sizeof(SceneBundle::files),
@@ -92,6 +92,13 @@ void writeRenderSettings(ByteWriter& out, const RenderSettings& s) {
     out.i32(s.sptBudget);
     out.u8(static_cast<std::uint8_t>(s.lightSampling));
     out.boolean(s.poolCaustics);
+    out.f32(s.cacheSpacing);
+    out.f32(s.cacheRadius);
+    out.i32(s.photonmapGroups);
+    out.i32(s.photonmapPhotons);
+    out.i32(s.photonmapNeighbours);
+    out.i32(s.photonmapGather);
+    out.boolean(s.photonmapScreenCaustics);
 }
 
 RenderSettings readRenderSettings(ByteReader& in) {
@@ -132,7 +139,7 @@ RenderSettings readRenderSettings(ByteReader& in) {
     s.progressiveFilter = in.boolean();
     s.progressiveAlpha = readFloat(in, "progressiveAlpha", 1e-3f, 0.999f);
     const std::uint8_t gi = in.u8();
-    if (gi > static_cast<std::uint8_t>(GiMode::Spt))
+    if (gi > static_cast<std::uint8_t>(GiMode::PhotonMap))
         in.fail("unknown GI mode " + std::to_string(gi));
     s.gi = static_cast<GiMode>(gi);
     s.streamVsls = readInt(in, "streamVsls", 1, kMaxStreamVsls);
@@ -147,6 +154,13 @@ RenderSettings readRenderSettings(ByteReader& in) {
         in.fail("unknown light sampling " + std::to_string(lightSampling));
     s.lightSampling = static_cast<LightSampling>(lightSampling);
     s.poolCaustics = in.boolean();
+    s.cacheSpacing = readFloat(in, "cacheSpacing", 1e-6f, 0.999f);
+    s.cacheRadius = readFloat(in, "cacheRadius", 0.5f, 16.0f);
+    s.photonmapGroups = readInt(in, "photonmapGroups", 1, kMaxPhotonmapGroups);
+    s.photonmapPhotons = readInt(in, "photonmapPhotons", 1, 4096);
+    s.photonmapNeighbours = readInt(in, "photonmapNeighbours", 1, 4096);
+    s.photonmapGather = readInt(in, "photonmapGather", 1, 65536);
+    s.photonmapScreenCaustics = in.boolean();
     return s;
 }
 

@@ -126,6 +126,13 @@ inline SceneData sampleSceneData() {
     m.settings.sptBudget = 11;
     m.settings.lightSampling = LightSampling::Tree;
     m.settings.poolCaustics = false;
+    m.settings.cacheSpacing = 0.03f;
+    m.settings.cacheRadius = 2.5f;
+    m.settings.photonmapGroups = 128;
+    m.settings.photonmapPhotons = 8;
+    m.settings.photonmapNeighbours = 48;
+    m.settings.photonmapGather = 32;
+    m.settings.photonmapScreenCaustics = false;
     m.image = {800, 600, -1.5f};
     m.camera.position = {1.0f, 2.0f, 3.0f};
     m.camera.lookAt = {-1.0f, 0.5f, 0.25f};

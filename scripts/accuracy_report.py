@@ -21,6 +21,12 @@ Run through scripts/bench_accuracy.sh (which installs and builds first). Steps, 
      blocks between "<!-- BEGIN GENERATED ... -->" markers of docs/ACCURACY.md are replaced,
      the prose around them is kept; a summary of which claims hold is printed at the end.
 
+--modes cache,photonmap is a run of its own (docs/ACCURACY.md, "GI modes"): per scene the
+reference, then the accumulation curves of igi and of each named GI mode (igi-master --gi M) and
+of our path tracer, for --seconds, and Cycles' points from the main run's results.csv at the same
+size (--peer-rows) for the Pareto front. It writes docs/accuracy/modes-WxH/ and replaces only the
+block "modes-WxH" of docs/ACCURACY.md, so runs at several sizes sit side by side.
+
 Timing: "s/frame" is the session's render time (first frame opened to last composited, from
 --stats-json) over the frames rendered; frames are pipelined, so this is throughput, not the
 latency of one frame. An accumulated image of k frames costs k times that ("time"). "wall" is
@@ -451,6 +457,15 @@ class Bench:
                 log(f"{name}: the baseline build failed: {e}")
                 self.notes.append(f"{name}: the baseline build failed: {str(e).splitlines()[0]}")
 
+    def modes(self, name, scene, ref):
+        """The GI modes beside igi and our path tracer, each accumulated for --seconds."""
+        self.accumulation(name, scene, ref, "igi", [], "frames")
+        for mode in self.args.modes:
+            self.accumulation(name, scene, ref, f"gi-{mode}", ["--gi", mode], "frames")
+        self.accumulation(name, scene, ref, "igi-path", ["--integrator", "path", "--spp", "1"], "spp")
+        for row in self.args.peer_rows.get(name, []):
+            self.rows.append(dict(row))
+
     # ---------------------------------------------------------------- peers
     def cycles(self, name, scene_path, ref):
         a = self.args
@@ -547,6 +562,9 @@ class Bench:
         self.ref_images[spec.name] = ref
         log(f"{spec.name}: reference {info['spp_total']} spp, noise floor relMSE ~ {info['noise_floor_relative_mse']:.2g}")
         if a.references_only:
+            return
+        if a.modes:
+            self.modes(spec.name, scene, ref)
             return
         if spec.sweeps and a.sweeps:
             self.igi_sweeps(spec.name, scene, ref, spec.specular)
@@ -800,6 +818,10 @@ STYLE = {
     ("igi-baseline", "frames"): ("o", "tab:pink", "-.", "igi, baseline (previous) build"),
     ("igi-path", "spp"): ("x", "tab:gray", "-", "our path tracer, 1 spp per frame, accumulated"),
     ("cycles", "spp"): ("v", "tab:green", "-", "Blender Cycles (CPU), samples per pixel"),
+    ("gi-cache", "frames"): ("P", "tab:cyan", "-", "--gi cache (instant caching), accumulated frames"),
+    ("gi-photonmap", "frames"): ("*", "tab:olive", "-", "--gi photonmap (Larsen-Christensen), accumulated frames"),
+    ("gi-spt", "frames"): ("h", "tab:purple", "-", "--gi spt, accumulated frames"),
+    ("gi-stream", "frames"): ("<", "tab:brown", "-", "--gi stream, accumulated frames"),
 }
 
 
@@ -1038,6 +1060,112 @@ def write_reports(bench, docs, command, started):
     return parts, claims
 
 
+MODE_TIMES = (0.1, 1.0, 10.0)  # seconds of render time at which the modes' table reads the curves
+
+
+def load_peer_rows(path, width, height, scenes):
+    """Cycles' rows of a main run's results.csv, if that run was at this size: the Pareto front
+    of a modes run is drawn with them (Cycles is not re-run; its times come from that run)."""
+    if not path or not os.path.exists(path):
+        return {}, "no peer rows"
+    summary = os.path.join(os.path.dirname(path), "summary.json")
+    try:
+        with open(summary, encoding="utf-8") as f:
+            settings = json.load(f)["settings"]
+    except (OSError, KeyError, ValueError):
+        return {}, f"{summary} unreadable: no peer rows"
+    if (settings.get("width"), settings.get("height")) != (width, height):
+        return {}, f"{path} is at {settings.get('width')} x {settings.get('height')}: Cycles not shown"
+    out = {}
+    with open(path, encoding="utf-8") as f:
+        for r in csv.DictReader(f):
+            if r["renderer"] != "cycles" or (scenes and r["scene"] not in scenes):
+                continue
+            row = {k: r[k] for k in ("scene", "renderer", "sweep", "value")}
+            row["frames"] = int(r["frames"])
+            for k in ("spf", "time", "wall", "rays", "relmse", "ssim", "bias", "speckle", "rmse", "block_error"):
+                row[k] = float(r[k]) if r.get(k) not in (None, "") else float("nan")
+            out.setdefault(r["scene"], []).append(row)
+    return out, f"Cycles' points from {os.path.relpath(path, ROOT)} (its own run, same machine and size)"
+
+
+def modes_table(bench, scene, renderers):
+    rows = bench.rows
+    head = ("| renderer | s/frame | first frame: relMSE / SSIM / bias | "
+            + " | ".join(f"relMSE at {t:g} s" for t in MODE_TIMES)
+            + " | relMSE at the end (time) | bias at the end | on the Pareto front |")
+    lines = [head, "|" + "---|" * (6 + len(MODE_TIMES))]
+    igi = curve(rows, scene, "igi")
+    for renderer in renderers:
+        pts = curve(rows, scene, renderer)
+        if not pts:
+            continue
+        first = pts[0][2]
+        cells = []
+        for t in MODE_TIMES:
+            e = loglog(pts, t)
+            if e in ("before", None):
+                cells.append("-")
+                continue
+            ref = loglog(igi, t) if igi and renderer != "igi" else None
+            ratio = f" ({e / ref:.2f} x igi)" if isinstance(ref, float) else ""
+            cells.append(f"{fmt(e)}{ratio}")
+        last = pts[-1][2]
+        front = [r for r in rows if r["scene"] == scene and r["renderer"] == renderer and r.get("pareto")]
+        span = (f"{len(front)} points, {fmt(min(r['time'] for r in front))}-{fmt(max(r['time'] for r in front))} s"
+                if front else "no")
+        spf = "n/a" if renderer == "cycles" else fmt(last["spf"])  # Cycles' points are separate renders
+        lines.append(f"| {renderer} | {spf} | {fmt(first['relmse'])} / {first['ssim']:.4f} / "
+                     f"{first['bias']:+.4f} | " + " | ".join(cells)
+                     + f" | {fmt(last['relmse'])} ({fmt(last['time'])} s) | {last['bias']:+.4f} | {span} |")
+    return "\n".join(lines)
+
+
+def write_modes_report(bench, docs, command, started):
+    a = bench.args
+    rows = bench.rows
+    mark_pareto(rows)
+    os.makedirs(docs, exist_ok=True)
+    fields = ["scene", "renderer", "sweep", "value", "frames", "spf", "time", "wall", "rays", "relmse", "ssim",
+              "bias", "speckle", "pareto"]
+    with open(os.path.join(docs, "results.csv"), "w", newline="", encoding="utf-8") as f:
+        w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
+        w.writeheader()
+        for r in rows:
+            w.writerow(r)
+    end = machine()
+    renderers = ["igi"] + [f"gi-{m}" for m in a.modes] + ["igi-path", "cycles"]
+    sub = os.path.basename(os.path.normpath(docs))
+    out = [f"- command: `{command}`",
+           f"- machine: {end['nproc']} cores ({end['cpu']}), kernel {end['kernel']}; started {started['date']} "
+           f"(load {started['load']}), finished {end['date']} (load {end['load']}); shared cores, timings carry "
+           "that noise",
+           f"- {a.width} x {a.height}, {a.clients} local clients; every renderer accumulated for {a.seconds:g} s "
+           f"of render time (at least {a.min_frames} frames); {a.peer_note}",
+           "- relMSE at t: the curve read at t seconds of render time (log-log between its images), and "
+           "its ratio to igi's at the same time; '-' where the renderer has no image yet at t or its curve "
+           "ended before", ""]
+    for scene in bench.refs:
+        info = bench.refs[scene]
+        png = f"{scene}.png"
+        plot(rows, scene, os.path.join(docs, png), info, a.seconds)
+        out += [f"#### {scene} ({a.width} x {a.height}; reference {info['spp_total']} spp, noise floor relMSE "
+                f"{fmt(info['noise_floor_relative_mse'])})", "",
+                modes_table(bench, scene, renderers), "", f"![{scene}: the modes' error against time](accuracy/{sub}/{png})", ""]
+    if bench.notes:
+        out += [f"- {n}" for n in bench.notes]
+    text = "\n".join(out).rstrip() + "\n"
+    with open(os.path.join(docs, "results.md"), "w", encoding="utf-8") as f:
+        f.write(text)
+    with open(os.path.join(docs, "summary.json"), "w", encoding="utf-8") as f:
+        json.dump({"machine_start": started, "machine_end": end, "command": command,
+                   "settings": {"width": a.width, "height": a.height, "clients": a.clients, "seconds": a.seconds,
+                                "min_frames": a.min_frames, "modes": a.modes},
+                   "references": bench.refs, "curves": bench.curves, "notes": bench.notes,
+                   "pareto": [r for r in rows if r["pareto"]]}, f, indent=1, default=str)
+    return {f"modes-{a.width}x{a.height}": text.rstrip()}
+
+
 def print_summary(claims, smoke, docs):
     print("", flush=True)
     print("=" * 100)
@@ -1088,7 +1216,13 @@ def main():
     p.add_argument("--first-frame-repeats", type=int, default=3, help="sessions per build for the first-frame comparison")
     p.add_argument("--first-frame-frames", type=int, default=16, help="frames of each of those sessions")
     p.add_argument("--command", default="scripts/bench_accuracy.sh", help="the command line recorded in the document")
+    p.add_argument("--modes", default="",
+                   help="a run of the GI modes instead (e.g. cache,photonmap): igi, each mode and our path tracer "
+                        "accumulated per scene; writes docs/accuracy/modes-WxH/ and the block modes-WxH only")
+    p.add_argument("--peer-rows", default=os.path.join(ROOT, "docs", "accuracy", "results.csv"),
+                   help="with --modes: the main run's results.csv whose Cycles points join the Pareto front")
     a = p.parse_args()
+    a.modes = [m for m in a.modes.split(",") if m]
     a.scenes = [s for s in a.scenes.split(",") if s]
     unknown = [s for s in a.scenes if s not in SCENE_NAMES]
     if unknown:
@@ -1117,10 +1251,15 @@ def main():
             setattr(a, key, value)
     if a.ref_frames < 2 or a.ref_frames % 2:
         p.error("--ref-frames must be even (two halves)")
+    if a.out is None and a.modes:
+        a.out = os.path.join(ROOT, "out", f"accuracy-modes-{a.width}x{a.height}")
     if a.out is None:
         a.out = os.path.join(ROOT, "out", "accuracy-quick" if a.quick else "accuracy")
     if a.docs is None:
         a.docs = "" if a.quick else os.path.join(ROOT, "docs", "accuracy")
+        if a.modes and not a.quick:
+            a.docs = os.path.join(a.docs, f"modes-{a.width}x{a.height}")
+    a.peer_rows, a.peer_note = load_peer_rows(a.peer_rows if a.modes else "", a.width, a.height, a.scenes)
     # Only a full-strength run is evidence for the claims: a reference of >= 4096 spp, curves of
     # >= 60 s and >= 256 frames. Anything less is reported as a smoke run.
     a.evidence = (not a.quick and a.ref_spp * a.ref_frames >= 4096 and a.seconds >= 60
@@ -1136,6 +1275,12 @@ def main():
     if not bench.rows:
         raise SystemExit("no scene was rendered")
     docs = a.docs if a.docs else os.path.join(a.out, "report")
+    if a.modes:
+        parts = write_modes_report(bench, docs, a.command, started)
+        if a.docs and not a.quick:
+            report_util.splice(a.doc, parts, log)
+        log(f"wrote {docs}/results.md, results.csv, summary.json and plots")
+        return
     parts, claims = write_reports(bench, docs, a.command, started)
     if a.docs and not a.quick:
         report_util.splice(a.doc, parts, log)

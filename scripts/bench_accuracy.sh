@@ -20,6 +20,10 @@
 #                     and accumulation curve at the same settings, and the ratios new / old
 #   --ref DIR         where the cached references are (default out/reference/): e.g. those of
 #                     another worktree, which saves their hours of path tracing
+#   --modes cache,photonmap
+#                     a run of the GI modes instead: igi, each mode and our path tracer accumulated
+#                     per scene (no sweeps, no claims); writes docs/accuracy/modes-WxH/ and only the
+#                     block modes-WxH of docs/ACCURACY.md (e.g. with --width 1920 --height 1080)
 # IGI_BUILD=/path/to/build uses that build (its bin/) instead of setting up and building build/.
 # A full run with --peers and --baseline-build renders 6 scenes for 60 s each several times over,
 # plus the 4096-spp references the first time: expect one to two hours on 2 shared cores.

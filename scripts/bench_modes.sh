@@ -9,7 +9,7 @@
 # frame; writes docs/modes/ (results.csv, results.md, summary.json, plots) and the generated block
 # of docs/MODES.md, and prints a summary per animation and mode.
 #
-# Usage: scripts/bench_modes.sh [--quick] [--modes igi,spt,stream,spt-eq,stream-eq] [more options]
+# Usage: scripts/bench_modes.sh [--quick] [--modes igi,spt,stream,spt-eq,stream-eq,cache,photonmap] [more options]
 #   --quick           smoke run of a few minutes: the first 20 frames of each animation, a 128-spp
 #                     reference, one seed; everything goes to out/modes-quick/, docs/ are not touched
 #   --modes LIST      the GI modes to measure (default igi,spt,stream,spt-eq,stream-eq: the -eq

@@ -83,7 +83,7 @@ ANIMS = [
      "all still; the mirror box jumps to the front at frame 8 and stays there", 4),
 ]
 ANIM_NAMES = [a[0] for a in ANIMS]
-DEFAULT_MODES = "igi,spt,stream,spt-eq,stream-eq"
+DEFAULT_MODES = "igi,spt,stream,spt-eq,stream-eq,cache,photonmap"
 # Modes at settings of their own: the name, then the --gi mode and its options. The "-eq" ones
 # shrink the pool to about IGI's shadow rays a pixel (4 light samples + about 8 VPLs a set), so
 # that they run at about IGI's time per frame: spt with 2 paths a group (72 paths) instead of 3,
@@ -136,6 +136,24 @@ PAPERS = [
      "lag": "'some latency' that depends on the pool size and the number of VSLs, no figure (sec. 8, 9.1)",
      "flicker": "not measured",
      "error": "no image-error numbers ('does not provide an exact solution at each frame', sec. 9.1)"},
+    {"paper": "003 Instant Caching, Debattista et al. 2009", "mode": "cache",
+     "hardware": "one PC, 8 cores (dual quad-core, 3 GHz), ray tracing on the CPU (sec. 4)",
+     "setting": "Cornell Box (about 65K triangles, a bunny circling a statue), Desk, Conference, Sibenik, Office ...; "
+                "diffuse interreflections from VPLs",
+     "speed": "first frame 1.49-3.62 x faster than IGI (Table 1); animations 2.42-6.82 x IGI's fps, "
+              "Cornell Box 10.45 fps against IGI's 2.11 (Table 3)",
+     "lag": "none claimed: invalid records are recomputed in the frame (sec. 3.2)",
+     "flicker": "not measured",
+     "error": "HDR-VDP against 2,500-spp path tracing: at most 2.11 % of pixels perceptibly different "
+              "(P > 75 %), 0-0.33 % against IGI (Table 5)"},
+    {"paper": "002 Simulated photon mapping, Larsen and Christensen 2004", "mode": "photonmap",
+     "hardware": "Pentium 4 2.4 GHz + GeForce FX 5950 (sec. 8)",
+     "setting": "box with a dynamic cube and sphere, 512 x 512; 77 groups x 40 photons, 140 AIM and 140 IIM "
+                "texels, 20 final-gathered texels a frame, 10,000 caustic photons renewed over 8 frames",
+     "speed": "35+ fps (sec. 8)",
+     "lag": "photons retraced every 8 frames; 'a trail after the specular object' when it moves fast (sec. 4)",
+     "flicker": "not measured",
+     "error": "no image-error numbers"},
 ]
 
 

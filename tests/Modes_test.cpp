@@ -97,6 +97,23 @@ TEST(Modes, SptAnimationIsTheSameWithOneAndThreeClients) {
     expectSameExampleWithOneAndThreeClients("spt");
 }
 
+// Instant caching's records are a function of the scene state only: a client that computed a
+// record anew and one that brought it up to date after a move hold the same bits.
+TEST(Modes, CacheAnimationIsTheSameWithOneAndThreeClients) {
+    expectSameAnimationWithOneAndThreeClients("cache");
+    expectSameAnimationWithOneAndThreeClients("cache", "jump.json", 8);
+    expectSameExampleWithOneAndThreeClients("cache");
+}
+
+// Simulated photon mapping's emission of a frame is a function of the scene of every frame
+// before (the round robin goes on while the scene holds still), its reconstruction a function
+// of the emission; the screen-space caustics are the frame's photons, whichever tile asks.
+TEST(Modes, PhotonmapAnimationIsTheSameWithOneAndThreeClients) {
+    expectSameAnimationWithOneAndThreeClients("photonmap");
+    expectSameAnimationWithOneAndThreeClients("photonmap", "jump.json", 8);
+    expectSameExampleWithOneAndThreeClients("photonmap");
+}
+
 // A client that joins mid-animation replays the epochs the master sends with its scene
 // (SceneData's history) and holds the lighting the first client holds: the session's frames
 // are bit for bit those of a session with that one client alone.
@@ -156,6 +173,11 @@ TEST(Modes, AnSptJoinerHoldsThePoolTheOthersHold) {
     expectAJoinerHoldsTheSameLighting("spt");
 }
 
+TEST(Modes, CacheAndPhotonmapJoinersHoldTheLightTheOthersHold) {
+    expectAJoinerHoldsTheSameLighting("cache");      // no history: its records, computed anew
+    expectAJoinerHoldsTheSameLighting("photonmap");  // the emission replayed from the history
+}
+
 // The mode is what lights the frames after a change: not IGI's image, but the same light
 // within what the mode's approximation costs (clustering photons onto surface lights, or light
 // kept from before the change).
@@ -183,6 +205,11 @@ TEST(Modes, SptFirstFramesAreItsOwnAndAsBrightAsIgis) {
     expectOwnFirstFramesAsBrightAsIgis("spt");
 }
 
+TEST(Modes, CacheAndPhotonmapFirstFramesAreTheirOwnAndAsBrightAsIgis) {
+    expectOwnFirstFramesAsBrightAsIgis("cache");
+    expectOwnFirstFramesAsBrightAsIgis("photonmap");
+}
+
 // A still view converges in every mode to the rendering equation's answer: the accumulated
 // frames are the converging estimator, the mode's first frame weighs 1 / frames.
 TEST(Modes, StillSceneConvergesToThePathTracersMeanInEveryMode) {
@@ -202,7 +229,7 @@ TEST(Modes, StillSceneConvergesToThePathTracersMeanInEveryMode) {
     };
     const Image reference =
         render({"--integrator", "path", "--spp", "64", "--frames", "8"}, "path.exr");
-    for (const std::string mode : {"igi", "spt", "stream"}) {
+    for (const std::string mode : {"igi", "spt", "stream", "cache", "photonmap"}) {
         const Image image = render({"--gi", mode, "--frames", "128"}, mode + ".exr");
         EXPECT_NEAR(meanLuminance(image) / meanLuminance(reference), 1.0, 0.02) << mode;
     }

@@ -21,12 +21,36 @@ constexpr int kMaxStreamVsls = 16384;
 /// the cluster (client/LightingMethod.h). Accumulated frames of a still view converge the same
 /// way in every mode; the modes differ in what the first frame after a change shows.
 enum class GiMode : std::uint8_t {
-    Igi,     ///< fresh light paths every frame (the paper's instant global illumination)
-    Stream,  ///< photon streaming (Meneveaux and Bridault 2008): a pool of recent photons
-             ///< deposited on virtual surface-element lights that move with their objects
-    Spt,     ///< selective photon tracing (Dmitriev et al. 2002): a pool of light paths in
-             ///< groups, only the groups a change touches traced again
+    Igi,        ///< fresh light paths every frame (the paper's instant global illumination)
+    Stream,     ///< photon streaming (Meneveaux and Bridault 2008): a pool of recent photons
+                ///< deposited on virtual surface-element lights that move with their objects
+    Spt,        ///< selective photon tracing (Dmitriev et al. 2002): a pool of light paths in
+                ///< groups, only the groups a change touches traced again
+    Cache,      ///< instant caching (Debattista et al. 2009): the VPLs' light on Lambertian
+                ///< surfaces cached at object-space sites and interpolated, kept across frames
+    PhotonMap,  ///< Larsen and Christensen (2004): selective photon emission, a photon map's
+                ///< light final-gathered at the sites, caustics filtered in screen space
 };
+
+/// The name of a mode in scene files, on the command line and in the status.
+inline const char* giModeName(GiMode mode) {
+    switch (mode) {
+        case GiMode::Stream:
+            return "stream";
+        case GiMode::Spt:
+            return "spt";
+        case GiMode::Cache:
+            return "cache";
+        case GiMode::PhotonMap:
+            return "photonmap";
+        case GiMode::Igi:
+            break;
+    }
+    return "igi";
+}
+
+/// The most photon groups of simulated photon mapping: every frame checks a photon of each.
+constexpr int kMaxPhotonmapGroups = 65536;
 
 /// The most path groups of selective photon tracing: every scene change checks each one.
 constexpr int kMaxSptGroups = 65536;
@@ -140,6 +164,17 @@ struct RenderSettings {
     int sptPaths = 3;    ///< light paths per group
     int sptPilots = 1;   ///< of which pilots, traced on every change to detect it (<= sptPaths)
     int sptBudget = 6;   ///< groups traced again per frame at most
+
+    // Instant caching (GiMode::Cache).
+    float cacheSpacing = 0.02f;  ///< distance between cache sites, a fraction of the diagonal
+    float cacheRadius = 2.0f;    ///< interpolation radius, in site spacings
+
+    // Simulated photon mapping (GiMode::PhotonMap); its sites are instant caching's.
+    int photonmapGroups = 256;            ///< photon groups G of the selective emission
+    int photonmapPhotons = 16;            ///< photons per group P: one of each is checked per frame
+    int photonmapNeighbours = 64;         ///< photon hits in a radiance estimate
+    int photonmapGather = 64;             ///< final gather rays per site
+    bool photonmapScreenCaustics = true;  ///< caustics by the screen-space filter (else the grid)
 
     // Reference path tracer.
     int pathSamples = 16;    ///< samples per pixel per frame

@@ -27,8 +27,12 @@ void readIntegrator(const JsonNode& section, RenderSettings& s) {
             v->choice({"igi", "path"}) == "igi" ? IntegratorKind::Igi : IntegratorKind::Path;
     }
     if (auto v = section.find("gi")) {
-        const std::string gi = v->choice({"igi", "spt", "stream"});
-        s.gi = gi == "igi" ? GiMode::Igi : gi == "spt" ? GiMode::Spt : GiMode::Stream;
+        const std::string gi = v->choice({"igi", "spt", "stream", "cache", "photonmap"});
+        s.gi = gi == "igi"         ? GiMode::Igi
+               : gi == "spt"       ? GiMode::Spt
+               : gi == "cache"     ? GiMode::Cache
+               : gi == "photonmap" ? GiMode::PhotonMap
+                                   : GiMode::Stream;
     }
     readInt(section, "stream_vsls", 1, kMaxStreamVsls, s.streamVsls);
     readInt(section, "stream_photons", 1, 1 << 24, s.streamPhotons);
@@ -38,6 +42,18 @@ void readIntegrator(const JsonNode& section, RenderSettings& s) {
     // Pilots are the first paths of their group: at most all of them.
     readInt(section, "spt_pilots", 1, s.sptPaths, s.sptPilots);
     readInt(section, "spt_budget", 1, kMaxSptGroups, s.sptBudget);
+    // Instant caching: site spacing (a fraction of the diagonal) and interpolation radius (in
+    // spacings; below 1 many points find no site and are lit directly).
+    readFloat(section, "cache_spacing", NumberRange::open(0, 1), s.cacheSpacing);
+    readFloat(section, "cache_radius", NumberRange::closed(0.5, 16), s.cacheRadius);
+    // Simulated photon mapping: photons (groups x photons per group), the radiance estimate's
+    // neighbours, the final gather's rays and where the caustics are filtered.
+    readInt(section, "photonmap_groups", 1, kMaxPhotonmapGroups, s.photonmapGroups);
+    readInt(section, "photonmap_photons", 1, 4096, s.photonmapPhotons);
+    readInt(section, "photonmap_neighbours", 1, 4096, s.photonmapNeighbours);
+    readInt(section, "photonmap_gather", 1, 65536, s.photonmapGather);
+    if (auto v = section.find("photonmap_caustics"))
+        s.photonmapScreenCaustics = v->choice({"screen", "grid"}) == "screen";
 }
 
 // Interleaving, direct light, VPLs and their clamp.
@@ -134,6 +150,13 @@ void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& setting
                        "spt_paths",
                        "spt_pilots",
                        "spt_budget",
+                       "cache_spacing",
+                       "cache_radius",
+                       "photonmap_groups",
+                       "photonmap_photons",
+                       "photonmap_neighbours",
+                       "photonmap_gather",
+                       "photonmap_caustics",
                        "interleave",
                        "direct_samples",
                        "light_sampling",

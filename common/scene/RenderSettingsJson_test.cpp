@@ -22,9 +22,9 @@ TEST(RenderSettingsJson, AbsentKeysKeepTheirValue) {
 TEST(RenderSettingsJson, LightSamplingChoices) {
     RenderSettings s;
     EXPECT_EQ(s.lightSampling, LightSampling::Auto);
-    for (const auto& [name, value] : {std::pair{"power", LightSampling::Power},
-                                      std::pair{"tree", LightSampling::Tree},
-                                      std::pair{"auto", LightSampling::Auto}}) {
+    for (const auto& [name, value] :
+         {std::pair{"power", LightSampling::Power}, std::pair{"tree", LightSampling::Tree},
+          std::pair{"auto", LightSampling::Auto}}) {
         applyRenderSettingsJson(nlohmann::json{{"light_sampling", name}}, s, "f", "");
         EXPECT_EQ(s.lightSampling, value) << name;
     }
@@ -55,6 +55,29 @@ TEST(RenderSettingsJson, ConvergeSetsEveryMeanAndKeysBesideItWin) {
     EXPECT_FALSE(s.poolCaustics);
     applyRenderSettingsJson(nlohmann::json{{"pool_caustics", true}}, s, "f", "");
     EXPECT_TRUE(s.poolCaustics);
+}
+
+// The cache modes' keys, and the values they refuse.
+TEST(RenderSettingsJson, CacheAndPhotonmapKeys) {
+    RenderSettings s;
+    applyRenderSettingsJson(nlohmann::json{{"gi", "cache"}, {"cache_spacing", 0.05}}, s, "f", "");
+    EXPECT_EQ(s.gi, GiMode::Cache);
+    EXPECT_FLOAT_EQ(s.cacheSpacing, 0.05f);
+    applyRenderSettingsJson(nlohmann::json{{"gi", "photonmap"},
+                                           {"photonmap_caustics", "grid"},
+                                           {"photonmap_groups", 64},
+                                           {"photonmap_gather", 16}},
+                            s, "f", "");
+    EXPECT_EQ(s.gi, GiMode::PhotonMap);
+    EXPECT_FALSE(s.photonmapScreenCaustics);
+    EXPECT_EQ(s.photonmapGroups, 64);
+    EXPECT_EQ(s.photonmapGather, 16);
+    EXPECT_EQ(giModeName(s.gi), std::string("photonmap"));
+    for (const char* bad : {R"({"cache_spacing": 0})", R"({"cache_radius": 0.1})",
+                            R"({"photonmap_caustics": "hashed"})", R"({"photonmap_photons": 0})"})
+        EXPECT_THROW(applyRenderSettingsJson(nlohmann::json::parse(bad), s, "f", ""), SceneError)
+            << bad;
+    EXPECT_FALSE(s.photonmapScreenCaustics);
 }
 
 TEST(RenderSettingsJson, ErrorsUseTheGivenFileAndPrefix) {

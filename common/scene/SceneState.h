@@ -27,6 +27,11 @@ struct SceneState {
     void applyTo(Scene& scene) const;
 
     bool operator==(const SceneState&) const = default;
+    /// Whether everything but the camera is equal: the light in the scene is the same.
+    bool sameLighting(const SceneState& o) const {
+        return transforms == o.transforms && materials == o.materials &&
+               pointLights == o.pointLights && quadLights == o.quadLights;
+    }
 };
 
 }  // namespace igi
