@@ -34,17 +34,23 @@ float areaOf(const Corners& c) {
     return 0.5f * glm::length(glm::cross(c.p1 - c.p0, c.p2 - c.p0));
 }
 
-double totalArea(const Scene& scene, const SceneState& state) {
-    double total = 0;
+// Calls f(mesh, triangle, area) for every triangle that carries sites and has an area.
+template <typename F>
+void forEachSiteTriangle(const Scene& scene, const SceneState& state, F&& f) {
     for (std::uint32_t i = 0; i < scene.meshes.size(); ++i) {
         const Mesh& mesh = scene.meshes[i];
         const glm::mat4 m = state.transforms[i].matrix();
         for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
             if (!carriesSites(state.materials[mesh.materialIds[t]])) continue;
             const float a = areaOf(cornersOf(mesh, m, t));
-            if (a > 0 && std::isfinite(a)) total += a;
+            if (a > 0 && std::isfinite(a)) f(i, t, a);
         }
     }
+}
+
+double totalArea(const Scene& scene, const SceneState& state) {
+    double total = 0;
+    forEachSiteTriangle(scene, state, [&](std::uint32_t, std::uint32_t, float a) { total += a; });
     return total;
 }
 
@@ -65,28 +71,21 @@ CacheSites CacheSites::place(const Scene& scene, float spacing, std::uint64_t se
     double h2 = double(spacing) * double(spacing);
     if (area / h2 > double(maxSites)) h2 = area / double(maxSites);
     out.spacing = float(std::sqrt(h2));
-    for (std::uint32_t i = 0; i < scene.meshes.size(); ++i) {
-        const Mesh& mesh = scene.meshes[i];
-        const glm::mat4 m = state.transforms[i].matrix();
-        for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-            if (!carriesSites(state.materials[mesh.materialIds[t]])) continue;
-            const float a = areaOf(cornersOf(mesh, m, t));
-            if (!(a > 0) || !std::isfinite(a)) continue;
-            const double expected = double(a) / h2;
-            const std::uint64_t h = hashValues(seed, kSiteStream, i, t);
-            const double fraction = expected - std::floor(expected);
-            auto count = std::uint32_t(std::floor(expected));
-            if (Sobol::toFloat(std::uint32_t(h >> 32)) < fraction) ++count;
-            const auto s0 = std::uint32_t(h), s1 = std::uint32_t(mix64(h) >> 32);
-            for (std::uint32_t j = 0; j < count && out.sites.size() < maxSites; ++j) {
-                // Uniform on the triangle by the square root warp, which keeps the points'
-                // stratification.
-                const float su = std::sqrt(Sobol::scrambled(j, 0, s0));
-                const float v = Sobol::scrambled(j, 1, s1);
-                out.sites.push_back({i, t, su * (1.0f - v), su * v});
-            }
+    forEachSiteTriangle(scene, state, [&](std::uint32_t i, std::uint32_t t, float a) {
+        const double expected = double(a) / h2;
+        const std::uint64_t h = hashValues(seed, kSiteStream, i, t);
+        const double fraction = expected - std::floor(expected);
+        auto count = std::uint32_t(std::floor(expected));
+        if (Sobol::toFloat(std::uint32_t(h >> 32)) < fraction) ++count;
+        const auto s0 = std::uint32_t(h), s1 = std::uint32_t(mix64(h) >> 32);
+        for (std::uint32_t j = 0; j < count && out.sites.size() < maxSites; ++j) {
+            // Uniform on the triangle by the square root warp, which keeps the points'
+            // stratification.
+            const float su = std::sqrt(Sobol::scrambled(j, 0, s0));
+            const float v = Sobol::scrambled(j, 1, s1);
+            out.sites.push_back({i, t, su * (1.0f - v), su * v});
         }
-    }
+    });
     return out;
 }
 

@@ -96,6 +96,23 @@ struct SiteWeights {
 void interpolationWeights(const SiteGrid& grid, glm::vec3 p, glm::vec3 n, float maxAngleCos,
                           SiteWeights& out);
 
+/// The weighted mean of record(r) over the records an interpolation at (p, n) uses, or
+/// fallback() where none qualifies; summed in the records' order.
+template <typename Record, typename Fallback>
+glm::vec3 interpolate(const SiteGrid& grid, glm::vec3 p, glm::vec3 n, float maxAngleCos,
+                      Record&& record, Fallback&& fallback) {
+    SiteWeights weights;
+    interpolationWeights(grid, p, n, maxAngleCos, weights);
+    if (weights.empty()) return fallback();
+    glm::vec3 sum(0.0f);
+    float total = 0;
+    for (const SiteWeight& w : weights) {
+        sum += w.weight * record(w.record);
+        total += w.weight;
+    }
+    return sum / total;
+}
+
 template <typename F>
 void SiteGrid::forEachNear(glm::vec3 p, F&& f) const {
     if (positions_.empty()) return;

@@ -170,14 +170,7 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
             batch.add(w, d, v.power * g, glm::vec3(0.0f), sums.irradiance, sums.glossy);
             continue;
         }
-        glm::vec3 intensity = v.power;
-        float sharpnessY = v.diffuseShare;
-        if (v.glossy()) {
-            const float c = -glm::dot(w, v.mirror);
-            const float lobe = c > 0 ? std::pow(std::min(c, 1.0f), v.exponent) : 0.0f;
-            intensity += v.glossyPower * lobe;
-            sharpnessY += v.glossyShare * 0.5f * (v.exponent + 2.0f) * lobe;
-        }
+        const auto [intensity, sharpnessY] = v.towards(w);
         const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
         const float sharpnessX = glossy ? b.sharpness(cosAlpha) : b.diffuseShare;
         const float kept = keptFraction(d2, set.minDistance2, set.sharpnessBudget, sharpnessX,

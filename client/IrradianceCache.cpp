@@ -34,6 +34,7 @@ IrradianceCache::IrradianceCache(const TraceableScene& scene,
                                  const Config& config,
                                  std::shared_ptr<const IrradianceCache> previous)
     : scene_(scene),
+      diagonal_(scene.diagonal()),
       state_(std::move(state)),
       sites_(std::move(sites)),
       grid_(scene.geometry().scene(), *state_, *sites_, config.radius),
@@ -43,8 +44,11 @@ IrradianceCache::IrradianceCache(const TraceableScene& scene,
       counts_(std::make_shared<Counts>()) {
     // The previous cache's records can be brought up to date only if they are records of the
     // same sites, bound and interpolation, and kept their visibility.
+    // The scene's scale too: it sets the offset of every shadow ray's origin, so a record's
+    // visibility bits hold for the same scale only (a move may change the bounds).
     const bool usable = previous && previous->sites_ == sites_ &&
-                        previous->config_.keepVisibility && config_.keepVisibility &&
+                        previous->diagonal_ == diagonal_ && previous->config_.keepVisibility &&
+                        config_.keepVisibility &&
                         previous->config_.minDistance2 == config_.minDistance2 &&
                         previous->config_.radius == config_.radius;
     if (!usable) return;
@@ -69,6 +73,7 @@ IrradianceCache::IrradianceCache(const TraceableScene& scene,
                                  std::shared_ptr<const SceneState> state,
                                  const IrradianceCache& same)
     : scene_(scene),
+      diagonal_(scene.diagonal()),
       state_(std::move(state)),
       sites_(same.sites_),
       grid_(scene.geometry().scene(), *state_, *sites_, same.config_.radius),
@@ -92,14 +97,7 @@ IrradianceCache::Link IrradianceCache::link(const Vpl& v, glm::vec3 origin, glm:
     const float cosY = -glm::dot(v.normal, w);
     if (cosY <= 0) return out;
     // As EndPointShader connects a Lambertian point to a VPL, with the paper's bound.
-    glm::vec3 intensity = v.power;
-    float sharpnessY = v.diffuseShare;
-    if (v.glossy()) {
-        const float c = -glm::dot(w, v.mirror);
-        const float lobe = c > 0 ? std::pow(std::min(c, 1.0f), v.exponent) : 0.0f;
-        intensity += v.glossyPower * lobe;
-        sharpnessY += v.glossyShare * 0.5f * (v.exponent + 2.0f) * lobe;
-    }
+    const auto [intensity, sharpnessY] = v.towards(w);
     const float kept =
         keptFraction(d2, config_.minDistance2, std::numeric_limits<float>::infinity(), 1.0f,
                      sharpnessY, BoundShape::Smooth);
@@ -193,16 +191,10 @@ glm::vec3 IrradianceCache::irradianceAt(glm::vec3 position, glm::vec3 n,
 
 glm::vec3 IrradianceCache::irradiance(glm::vec3 position, glm::vec3 faceNormal,
                                       RayCounters& counters) const {
-    SiteWeights weights;
-    interpolationWeights(grid_, position, faceNormal, config_.maxAngleCos, weights);
-    if (weights.empty()) return irradianceAt(position, faceNormal, counters);
-    glm::vec3 sum(0.0f);
-    float total = 0;
-    for (const SiteWeight& w : weights) {
-        sum += w.weight * record(w.record, counters);
-        total += w.weight;
-    }
-    return sum / total;
+    return interpolate(
+        grid_, position, faceNormal, config_.maxAngleCos,
+        [&](std::uint32_t r) { return record(r, counters); },
+        [&] { return irradianceAt(position, faceNormal, counters); });
 }
 
 }  // namespace igi

@@ -105,6 +105,7 @@ class IrradianceCache final : public IndirectIrradiance, public LightingHistory 
                                        RayCounters& counters) const;
 
     const TraceableScene& scene_;
+    float diagonal_;  ///< scene_'s, kept: the previous cache's scene may be gone
     std::shared_ptr<const SceneState> state_;
     std::shared_ptr<const CacheSites> sites_;
     SiteGrid grid_;

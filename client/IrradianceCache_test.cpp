@@ -10,6 +10,7 @@
 #include "EmbreeDevice.h"
 #include "SceneGeometry.h"
 #include "SceneVersion.h"
+#include "TestEpochs.h"
 #include "TestScenes.h"
 
 namespace igi {
@@ -24,30 +25,7 @@ Scene cacheBox() {
     return s;
 }
 
-/// A client's scene versions, one per epoch, each continuing the previous one's cache as
-/// ClientSession does (or, with `fresh`, starting from nothing, as a client that joins does).
-class Epochs {
-  public:
-    explicit Epochs(Scene scene) : scene_(std::move(scene)), geometry_(device_, scene_) {}
-
-    const CacheLighting& begin(const SceneState& state, bool fresh = false) {
-        LightingContext c{&scene_, std::uint32_t(versions_.size()), 0, nullptr};
-        if (!versions_.empty() && !fresh)
-            c.previous = versions_.back()->renderer.method().history(0);
-        versions_.push_back(std::make_unique<SceneVersion>(c.epoch, geometry_, state, scene_.render,
-                                                           scene_.image, c));
-        const auto* m = dynamic_cast<const CacheLighting*>(&versions_.back()->renderer.method());
-        EXPECT_NE(m, nullptr);
-        return *m;
-    }
-    const Scene& scene() const { return scene_; }
-
-  private:
-    Scene scene_;
-    EmbreeDevice device_;
-    SceneGeometry geometry_;
-    std::vector<std::unique_ptr<SceneVersion>> versions_;
-};
+using Epochs = testing::Epochs<CacheLighting>;
 
 bool sameBits(glm::vec3 a, glm::vec3 b) {
     return std::memcmp(&a, &b, sizeof a) == 0;
@@ -81,7 +59,7 @@ TEST(IrradianceCache, AnUpdatedRecordEqualsOneComputedAnew) {
 
     for (const SceneState* s : {&moved, &light, &camera}) {
         const auto& updated = *client.begin(*s).stable();
-        const auto& fresh = *joiner.begin(*s, true).stable();
+        const auto& fresh = *joiner.begin(*s, 0, true).stable();
         const std::uint64_t tracedBefore = updated.recordsTraced();
         const std::uint64_t updatedBefore = updated.recordsUpdated();
         RayCounters rays;

@@ -62,25 +62,7 @@ bool MovedInstances::meshMoved(std::uint32_t mesh) const {
 bool MovedInstances::occluded(bool before, glm::vec3 origin, glm::vec3 direction, float tfar,
                               RayCounters& counters) const {
     RTCScene scene = before ? before_ : after_;
-    if (!scene) return false;
-    ++counters.rays;
-    ++counters.shadowRays;
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRay ray;
-    ray.org_x = origin.x;
-    ray.org_y = origin.y;
-    ray.org_z = origin.z;
-    ray.dir_x = direction.x;
-    ray.dir_y = direction.y;
-    ray.dir_z = direction.z;
-    ray.tnear = 0.0f;
-    ray.tfar = tfar;
-    ray.mask = 0xFFFFFFFFu;
-    ray.flags = 0;
-    ray.time = 0;
-    rtcOccluded1(scene, &context, &ray);
-    return ray.tfar < 0.0f;
+    return scene && TraceableScene::occludedIn(scene, origin, direction, tfar, counters);
 }
 
 }  // namespace igi

@@ -75,11 +75,14 @@ std::shared_ptr<const PhotonEmission> PhotonEmission::step(const EmissionTracer&
     next->update_ = {};
     next->state_ = tracer.state();
     if (!state_->sameLighting(*tracer.state())) next->lightingSince_ = frame;
+    // A light or a material that changed changes the power every photon carries, though its
+    // path may be the same: every group is traced again (the paper moves objects only).
+    const bool relit = !state_->sameLightsAndMaterials(*tracer.state());
     // Round robin: every group checks the same photon this frame.
     const std::uint32_t c = frame % tracer.photons();
     for (std::uint32_t g = 0; g < groups_.size(); ++g) {
         ++next->update_.checked;
-        if (tracer.path(g, c, next->update_.rays) == groups_[g]->paths[c]) continue;
+        if (!relit && tracer.path(g, c, next->update_.rays) == groups_[g]->paths[c]) continue;
         next->groups_[g] =
             std::make_shared<const EmissionGroup>(tracer.trace(g, frame, next->update_.rays));
         ++next->update_.traced;

@@ -7,6 +7,7 @@
 #include "PhotonMap.h"
 #include "PhotonMapLighting.h"
 #include "SceneVersion.h"
+#include "TestEpochs.h"
 #include "TestScenes.h"
 
 namespace igi {
@@ -24,30 +25,7 @@ Scene photonBox() {
     return s;
 }
 
-/// A client's scene versions, one per epoch, each continuing the previous one's emission.
-class Epochs {
-  public:
-    explicit Epochs(Scene scene) : scene_(std::move(scene)), geometry_(device_, scene_) {}
-
-    const PhotonMapLighting& begin(const SceneState& state, std::uint32_t firstFrame) {
-        LightingContext c{&scene_, std::uint32_t(versions_.size()), firstFrame, nullptr};
-        if (!versions_.empty())
-            c.previous = versions_.back()->renderer.method().history(firstFrame);
-        versions_.push_back(std::make_unique<SceneVersion>(c.epoch, geometry_, state, scene_.render,
-                                                           scene_.image, c));
-        const auto* m =
-            dynamic_cast<const PhotonMapLighting*>(&versions_.back()->renderer.method());
-        EXPECT_NE(m, nullptr);
-        return *m;
-    }
-    const Scene& scene() const { return scene_; }
-
-  private:
-    Scene scene_;
-    EmbreeDevice device_;
-    SceneGeometry geometry_;
-    std::vector<std::unique_ptr<SceneVersion>> versions_;
-};
+using Epochs = testing::Epochs<PhotonMapLighting>;
 
 bool sameHits(const PhotonEmission& a, const PhotonEmission& b) {
     const auto ha = a.hits(), hb = b.hits();
@@ -95,6 +73,24 @@ TEST(PhotonEmission, AMoveRetracesTheGroupsItDivertsWithinAGroupsPhotons) {
     const auto settled = ma.emissionAt(18);
     EXPECT_TRUE(settled->settled(moved, 18, 8));
     EXPECT_EQ(ma.emissionAt(40), settled);
+}
+
+// A light that is dimmed leaves every photon's path as it was, but not its power: every group
+// is traced again at once, and the photons carry the new power.
+TEST(PhotonEmission, ADimmedLightRetracesEveryGroup) {
+    Epochs client(photonBox());
+    SceneState still = SceneState::of(client.scene());
+    const auto before = client.begin(still, 0).emissionAt(0);
+    SceneState dimmed = still;
+    // Every light at half: each photon leaves from where it did, with half the power.
+    for (auto& l : dimmed.quadLights) l.radiance *= 0.5f;
+    for (auto& l : dimmed.pointLights) l.intensity *= 0.5f;
+    const auto after = client.begin(dimmed, 10).emissionAt(10);
+    EXPECT_EQ(after->update().traced, 64u);
+    const auto a = before->hits(), b = after->hits();
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_FALSE(a.empty());
+    EXPECT_NEAR(b[0].power.x / a[0].power.x, 0.5f, 1e-4f);
 }
 
 // The photon map's estimate of a uniformly lit plane is the density of its hits' power (each

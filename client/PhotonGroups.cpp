@@ -13,11 +13,6 @@ void sortUnique(std::vector<std::uint32_t>& v) {
     v.erase(std::unique(v.begin(), v.end()), v.end());
 }
 
-bool lightsOrMaterialsDiffer(const SceneState& a, const SceneState& b) {
-    return a.materials != b.materials || a.pointLights != b.pointLights ||
-           a.quadLights != b.quadLights;
-}
-
 // Instances past the scene's meshes are the quad lights' own geometry: a change of theirs is a
 // light change.
 bool moved(const SceneState& then, const SceneState& now, std::uint32_t mesh) {
@@ -82,7 +77,7 @@ std::vector<std::uint32_t> GroupTracer::pilotMeshes(std::uint32_t g, RayCounters
 bool groupTouched(const PhotonGroup& group, const SceneState& now,
                   const std::function<std::vector<std::uint32_t>()>& pilots) {
     const SceneState& then = *group.scene;
-    if (lightsOrMaterialsDiffer(then, now)) return true;
+    if (!then.sameLightsAndMaterials(now)) return true;
     if (then.transforms == now.transforms) return false;  // the camera alone moved
     if (anyMoved(then, now, group.meshes)) return true;
     return anyMoved(then, now, pilots());

@@ -14,6 +14,11 @@ namespace {
 constexpr float kSameSide = 0.5f;  // cos 60 degrees
 constexpr int kMaxShell = 4;       // cells out from the query's own, at most
 
+// The cell of a coordinate, kept within what an int64 holds whatever the cell size.
+std::int64_t cellOf(double v) {
+    return std::int64_t(std::clamp(std::floor(v), -1e15, 1e15));
+}
+
 struct Candidate {
     float d2;
     std::uint32_t index;
@@ -24,20 +29,23 @@ struct Candidate {
 PhotonMap::PhotonMap(std::vector<Vpl> hits, double area, int k) : k_(std::max(1, k)) {
     if (hits.empty()) return;
     // The radius that holds k hits where they are spread evenly over the area.
-    const double r =
+    double r =
         std::sqrt(double(k_) * std::max(area, 1e-30) / (3.14159265358979 * double(hits.size())));
+    // Not below a ten-thousandth of the hits' extent: the area is that of the scene as loaded,
+    // which is 0 when it had no diffuse surface and a change made one so.
+    glm::vec3 lo = hits[0].position, hi = lo;
+    for (const Vpl& h : hits) lo = glm::min(lo, h.position), hi = glm::max(hi, h.position);
+    r = std::max({r, 1e-4 * double(glm::length(hi - lo)), 1e-30});
     cell_ = float(r);
     invCell_ = float(1.0 / r);
-    const std::uint32_t size =
-        std::bit_ceil(std::max<std::uint32_t>(2u * std::uint32_t(hits.size()), 8u));
+    const auto size = std::uint32_t(std::bit_ceil(std::max<std::size_t>(2 * hits.size(), 8)));
     mask_ = size - 1;
     bucketStart_.assign(size + 1, 0);
     std::vector<std::uint32_t> bucket(hits.size());
     for (std::size_t i = 0; i < hits.size(); ++i) {
         const glm::vec3 p = hits[i].position;
-        bucket[i] = bucketOf(std::int64_t(std::floor(double(p.x) * invCell_)),
-                             std::int64_t(std::floor(double(p.y) * invCell_)),
-                             std::int64_t(std::floor(double(p.z) * invCell_)));
+        bucket[i] = bucketOf(cellOf(double(p.x) * invCell_), cellOf(double(p.y) * invCell_),
+                             cellOf(double(p.z) * invCell_));
         ++bucketStart_[bucket[i] + 1];
     }
     for (std::uint32_t b = 0; b < size; ++b) bucketStart_[b + 1] += bucketStart_[b];
@@ -54,9 +62,9 @@ std::uint32_t PhotonMap::hashCell(std::int64_t x, std::int64_t y, std::int64_t z
 
 glm::vec3 PhotonMap::radiance(glm::vec3 p, glm::vec3 n) const {
     if (hits_.empty()) return glm::vec3(0.0f);
-    const auto cx = std::int64_t(std::floor(double(p.x) * invCell_));
-    const auto cy = std::int64_t(std::floor(double(p.y) * invCell_));
-    const auto cz = std::int64_t(std::floor(double(p.z) * invCell_));
+    const auto cx = cellOf(double(p.x) * invCell_);
+    const auto cy = cellOf(double(p.y) * invCell_);
+    const auto cz = cellOf(double(p.z) * invCell_);
     std::vector<std::uint32_t> buckets;
     std::vector<Candidate> found;
     for (int shell = 1;; shell *= 2) {
@@ -89,6 +97,8 @@ glm::vec3 PhotonMap::radiance(glm::vec3 p, glm::vec3 n) const {
             r2 = found[std::size_t(k_ - 1)].d2;
             found.resize(std::size_t(k_));
         }
+        // Hits on top of each other: no density below a thousandth of a cell's radius.
+        r2 = std::max(r2, 1e-6f * cell_ * cell_);
         if (!(r2 > 0)) return glm::vec3(0.0f);
         std::sort(found.begin(), found.end(),
                   [](const Candidate& a, const Candidate& b) { return a.index < b.index; });

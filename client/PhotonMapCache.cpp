@@ -109,30 +109,18 @@ glm::vec3 PhotonMapCache::gather(glm::vec3 position, glm::vec3 n, std::uint64_t 
 
 glm::vec3 PhotonMapCache::surfaceRadiance(glm::vec3 position, glm::vec3 faceNormal,
                                           RayCounters&) const {
-    SiteWeights weights;
-    interpolationWeights(grid_, position, faceNormal, config_.maxAngleCos, weights);
-    if (weights.empty()) return map_->radiance(position, faceNormal);
-    glm::vec3 sum(0.0f);
-    float total = 0;
-    for (const SiteWeight& w : weights) {
-        sum += w.weight * approximated(w.record);
-        total += w.weight;
-    }
-    return sum / total;
+    return interpolate(
+        grid_, position, faceNormal, config_.maxAngleCos,
+        [&](std::uint32_t r) { return approximated(r); },
+        [&] { return map_->radiance(position, faceNormal); });
 }
 
 glm::vec3 PhotonMapCache::irradiance(glm::vec3 position, glm::vec3 faceNormal,
                                      RayCounters& counters) const {
-    SiteWeights weights;
-    interpolationWeights(grid_, position, faceNormal, config_.maxAngleCos, weights);
-    if (weights.empty()) return gather(position, faceNormal, pointKey(position), counters);
-    glm::vec3 sum(0.0f);
-    float total = 0;
-    for (const SiteWeight& w : weights) {
-        sum += w.weight * indirect(w.record, counters);
-        total += w.weight;
-    }
-    return sum / total;
+    return interpolate(
+        grid_, position, faceNormal, config_.maxAngleCos,
+        [&](std::uint32_t r) { return indirect(r, counters); },
+        [&] { return gather(position, faceNormal, pointKey(position), counters); });
 }
 
 }  // namespace igi

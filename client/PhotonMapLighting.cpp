@@ -8,7 +8,8 @@ namespace {
 
 // As instant caching's (CacheLighting).
 constexpr float kMaxAngleCos = 0.9f;
-// Frames whose screen caustics are kept for tiles still in flight.
+// Frames whose screen caustics and emission steps are kept for tiles still in flight (the
+// master has at most a few frames open at once).
 constexpr std::uint32_t kKeptFrames = 8;
 
 }  // namespace
@@ -65,17 +66,20 @@ std::shared_ptr<const PhotonMapLighting::Step> PhotonMapLighting::stepAt(
     std::lock_guard lock(mutex_);
     // Each frame's emission from the one before, in frame order, until no photon can diverge:
     // the emission of a frame does not depend on which frames this client rendered.
-    while (steps_.size() <= j) {
-        const auto next = std::uint32_t(firstFrame_ + steps_.size());
+    while (stepsBase_ + steps_.size() <= j) {
+        const std::size_t index = stepsBase_ + steps_.size();
+        const auto next = std::uint32_t(firstFrame_ + index);
         const Step& last = *steps_.back();
         if (last.emission->settled(*state_, next, tracer_.photons())) break;
         auto step = std::make_shared<Step>();
-        step->index = steps_.size();
+        step->index = index;
         step->emission = last.emission->step(tracer_, next);
         step->cache = reconstruct(step->emission, last.cache, last.emission->version());
         steps_.push_back(std::move(step));
+        if (steps_.size() > kKeptFrames) steps_.pop_front(), ++stepsBase_;
     }
-    return steps_[std::min(j, steps_.size() - 1)];
+    if (j < stepsBase_) return steps_.front();
+    return steps_[std::min(j - stepsBase_, steps_.size() - 1)];
 }
 
 std::shared_ptr<const PhotonEmission> PhotonMapLighting::emissionAt(std::uint32_t frame) const {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -75,7 +76,11 @@ class PhotonMapLighting final : public LightingMethod {
     PhotonMapCache::Config config_;
     int neighbours_;
     mutable std::mutex mutex_;  ///< guards steps_ and screens_
-    mutable std::vector<std::shared_ptr<const Step>> steps_;
+    /// The last kKeptSteps frames' steps (those of frames from firstFrame_ + stepsBase_ on): a
+    /// step may hold a photon map and a reconstruction of its own, and the master has only a
+    /// few frames in flight.
+    mutable std::deque<std::shared_ptr<const Step>> steps_;
+    mutable std::size_t stepsBase_ = 0;
     mutable std::map<std::uint32_t, std::shared_ptr<const ScreenCaustics>> screens_;
 };
 

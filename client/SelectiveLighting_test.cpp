@@ -9,6 +9,7 @@
 #include "EmbreeDevice.h"
 #include "SceneGeometry.h"
 #include "SceneVersion.h"
+#include "TestEpochs.h"
 #include "TestScenes.h"
 #include "sampling/HaltonPaths.h"
 
@@ -29,32 +30,7 @@ Scene sptBox() {
     return s;
 }
 
-/// A client's scene versions, one per epoch, each continuing the previous one's pool as
-/// ClientSession does.
-class Epochs {
-  public:
-    explicit Epochs(Scene scene) : scene_(std::move(scene)), geometry_(device_, scene_) {}
-
-    /// The version of a new epoch in `state`, beginning at `firstFrame`.
-    const SelectiveLighting& begin(const SceneState& state, std::uint32_t firstFrame) {
-        LightingContext c{&scene_, std::uint32_t(versions_.size()), firstFrame, nullptr};
-        if (!versions_.empty())
-            c.previous = versions_.back()->renderer.method().history(firstFrame);
-        versions_.push_back(std::make_unique<SceneVersion>(c.epoch, geometry_, state, scene_.render,
-                                                           scene_.image, c));
-        const auto* m =
-            dynamic_cast<const SelectiveLighting*>(&versions_.back()->renderer.method());
-        EXPECT_NE(m, nullptr);
-        return *m;
-    }
-    const Scene& scene() const { return scene_; }
-
-  private:
-    Scene scene_;
-    EmbreeDevice device_;
-    SceneGeometry geometry_;
-    std::vector<std::unique_ptr<SceneVersion>> versions_;
-};
+using Epochs = testing::Epochs<SelectiveLighting>;
 
 double torusDistance(float a, float b) {
     const double d = std::abs(double(a) - double(b));

@@ -114,8 +114,8 @@ bool TraceableScene::intersect(glm::vec3 origin, glm::vec3 direction, float tfar
     return true;
 }
 
-bool TraceableScene::occluded(glm::vec3 origin, glm::vec3 direction, float tfar,
-                              RayCounters& counters) const {
+bool TraceableScene::occludedIn(RTCScene scene, glm::vec3 origin, glm::vec3 direction, float tfar,
+                                RayCounters& counters) {
     ++counters.rays;
     ++counters.shadowRays;
     RTCIntersectContext context;
@@ -132,7 +132,7 @@ bool TraceableScene::occluded(glm::vec3 origin, glm::vec3 direction, float tfar,
     ray.mask = 0xFFFFFFFFu;
     ray.flags = 0;
     ray.time = 0;
-    rtcOccluded1(top_, &context, &ray);
+    rtcOccluded1(scene, &context, &ray);
     return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 

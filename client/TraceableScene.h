@@ -34,7 +34,12 @@ class TraceableScene {
     bool intersect(glm::vec3 origin, glm::vec3 direction, float tfar, SurfacePoint& hit,
                    RayCounters& counters) const;
     /// Whether anything lies along origin + t * direction, t in (0, tfar).
-    bool occluded(glm::vec3 origin, glm::vec3 direction, float tfar, RayCounters& counters) const;
+    bool occluded(glm::vec3 origin, glm::vec3 direction, float tfar, RayCounters& counters) const {
+        return occludedIn(top_, origin, direction, tfar, counters);
+    }
+    /// The same in another Embree scene (one shadow ray, counted).
+    static bool occludedIn(RTCScene scene, glm::vec3 origin, glm::vec3 direction, float tfar,
+                           RayCounters& counters);
     /// Up to 8 shadow rays from one origin in one Embree packet (about 1.4x the rays per second
     /// of single rays, igi-bench): blocked[i] tells whether anything lies along
     /// origin + t * directions[i], t in (0, tfar[i]), for i < count.

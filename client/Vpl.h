@@ -1,5 +1,9 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 namespace igi {
@@ -34,6 +38,24 @@ struct Vpl {
 
     bool glossy() const { return glossyShare > 0; }
     bool operator==(const Vpl&) const = default;
+
+    /// What the VPL sends towards a receiver in the unit direction -w (w: from the receiver to
+    /// the VPL), its cosine left out: the intensity, and its BRDF's sharpness that way for the
+    /// connection bound (client/ConnectionBound.h).
+    struct Emission {
+        glm::vec3 intensity;
+        float sharpness;
+    };
+    Emission towards(glm::vec3 w) const {
+        Emission e{power, diffuseShare};
+        if (glossy()) {
+            const float c = -glm::dot(w, mirror);
+            const float lobe = c > 0 ? std::pow(std::min(c, 1.0f), exponent) : 0.0f;
+            e.intensity += glossyPower * lobe;
+            e.sharpness += glossyShare * 0.5f * (exponent + 2.0f) * lobe;
+        }
+        return e;
+    }
 };
 
 /// Shadow rays toward a VPL stop this fraction of the distance short of it: it sits on a

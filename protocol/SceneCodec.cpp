@@ -157,7 +157,8 @@ RenderSettings readRenderSettings(ByteReader& in) {
     s.cacheSpacing = readFloat(in, "cacheSpacing", 1e-6f, 0.999f);
     s.cacheRadius = readFloat(in, "cacheRadius", 0.5f, 16.0f);
     s.photonmapGroups = readInt(in, "photonmapGroups", 1, kMaxPhotonmapGroups);
-    s.photonmapPhotons = readInt(in, "photonmapPhotons", 1, 4096);
+    s.photonmapPhotons =
+        readInt(in, "photonmapPhotons", 1, maxPhotonmapPhotonsPerGroup(s.photonmapGroups));
     s.photonmapNeighbours = readInt(in, "photonmapNeighbours", 1, 4096);
     s.photonmapGather = readInt(in, "photonmapGather", 1, 65536);
     s.photonmapScreenCaustics = in.boolean();

@@ -186,6 +186,7 @@ class Bench:
         self.first = {}  # scene -> first-frame comparison with the baseline build
         self.cycles_bias = {}  # scene -> IGI's accumulated image against Cycles' best render
         self.speckle = {}  # scene -> frames -> speckle over several seeds (speckle_seeds)
+        self.alone_rows = {}  # scene -> renderer -> frames without accumulation (--modes)
         self.notes = []
         self.refs = {}
         self.probes = []
@@ -458,13 +459,38 @@ class Bench:
                 self.notes.append(f"{name}: the baseline build failed: {str(e).splitlines()[0]}")
 
     def modes(self, name, scene, ref):
-        """The GI modes beside igi and our path tracer, each accumulated for --seconds."""
+        """The GI modes beside igi and our path tracer, each accumulated for --seconds, and each
+        mode's frames alone (what a user sees while things move)."""
         self.accumulation(name, scene, ref, "igi", [], "frames")
+        self.alone(name, scene, ref, "igi", [])
         for mode in self.args.modes:
             self.accumulation(name, scene, ref, f"gi-{mode}", ["--gi", mode], "frames")
+            self.alone(name, scene, ref, f"gi-{mode}", ["--gi", mode])
         self.accumulation(name, scene, ref, "igi-path", ["--integrator", "path", "--spp", "1"], "spp")
         for row in self.args.peer_rows.get(name, []):
             self.rows.append(dict(row))
+
+    def alone(self, name, scene, ref, renderer, extra):
+        """Frames without accumulation (the frames after a change are what the modes differ
+        in): ALONE_FRAMES frames of ALONE_SEEDS sessions, each frame judged alone; the mean
+        relMSE and SSIM, and the sessions' seconds per frame."""
+        d = os.path.join(self.work, name)
+        errs, ssims, spfs = [], [], []
+        for seed in range(1, ALONE_SEEDS + 1):
+            pattern = os.path.join(d, f"{renderer}-alone-{seed}-%04d.exr")
+            clear_sequence(pattern)
+            r = self.master(scene, extra + ["--no-accumulate", "--seed", str(seed)],
+                            os.path.join(d, f"{renderer}-alone-{seed}.exr"), ALONE_FRAMES, sequence=pattern)
+            spfs.append(r["seconds"] / r["frames"])
+            for k in range(ALONE_FRAMES):
+                e = self.compare(pattern % k, ref)
+                errs.append(e["relative_mse"])
+                ssims.append(e["ssim"])
+        out = {"spf": statistics.median(spfs), "relmse": statistics.mean(errs), "ssim": statistics.mean(ssims),
+               "frames": len(errs)}
+        self.alone_rows.setdefault(name, {})[renderer] = out
+        log(f"  {name} {renderer} alone: {out['spf'] * 1e3:.1f} ms/frame, relMSE {out['relmse']:.4g}, "
+            f"SSIM {out['ssim']:.4f} ({out['frames']} frames)")
 
     # ---------------------------------------------------------------- peers
     def cycles(self, name, scene_path, ref):
@@ -1060,7 +1086,8 @@ def write_reports(bench, docs, command, started):
     return parts, claims
 
 
-MODE_TIMES = (0.1, 1.0, 10.0)  # seconds of render time at which the modes' table reads the curves
+MODE_TIMES = (0.1, 1.0, 10.0)
+ALONE_FRAMES, ALONE_SEEDS = 8, 2  # frames without accumulation per session, sessions  # seconds of render time at which the modes' table reads the curves
 
 
 def load_peer_rows(path, width, height, scenes):
@@ -1091,10 +1118,13 @@ def load_peer_rows(path, width, height, scenes):
 
 def modes_table(bench, scene, renderers):
     rows = bench.rows
-    head = ("| renderer | s/frame | first frame: relMSE / SSIM / bias | "
+    head = ("| renderer | frames alone (--no-accumulate): s/frame, relMSE, SSIM | "
+            "s/frame accumulating | first frame: relMSE / SSIM / bias | "
             + " | ".join(f"relMSE at {t:g} s" for t in MODE_TIMES)
             + " | relMSE at the end (time) | bias at the end | on the Pareto front |")
-    lines = [head, "|" + "---|" * (6 + len(MODE_TIMES))]
+    lines = [head, "|" + "---|" * (7 + len(MODE_TIMES))]
+    alone = bench.alone_rows.get(scene, {})
+    base = alone.get("igi")
     igi = curve(rows, scene, "igi")
     for renderer in renderers:
         pts = curve(rows, scene, renderer)
@@ -1115,7 +1145,14 @@ def modes_table(bench, scene, renderers):
         span = (f"{len(front)} points, {fmt(min(r['time'] for r in front))}-{fmt(max(r['time'] for r in front))} s"
                 if front else "no")
         spf = "n/a" if renderer == "cycles" else fmt(last["spf"])  # Cycles' points are separate renders
-        lines.append(f"| {renderer} | {spf} | {fmt(first['relmse'])} / {first['ssim']:.4f} / "
+        al = alone.get(renderer)
+        if al:
+            vs = (f" ({al['relmse'] / base['relmse']:.2f} x igi's, at {al['spf'] / base['spf']:.2f} x its time)"
+                  if base and renderer != "igi" else "")
+            al_cell = f"{fmt(al['spf'])} s, {fmt(al['relmse'])}, {al['ssim']:.4f}{vs}"
+        else:
+            al_cell = "n/a"
+        lines.append(f"| {renderer} | {al_cell} | {spf} | {fmt(first['relmse'])} / {first['ssim']:.4f} / "
                      f"{first['bias']:+.4f} | " + " | ".join(cells)
                      + f" | {fmt(last['relmse'])} ({fmt(last['time'])} s) | {last['bias']:+.4f} | {span} |")
     return "\n".join(lines)
@@ -1142,6 +1179,11 @@ def write_modes_report(bench, docs, command, started):
            "that noise",
            f"- {a.width} x {a.height}, {a.clients} local clients; every renderer accumulated for {a.seconds:g} s "
            f"of render time (at least {a.min_frames} frames); {a.peer_note}",
+           f"- frames alone: {ALONE_SEEDS} sessions of {ALONE_FRAMES} frames with --no-accumulate (seeds 1, 2), "
+           "each frame judged alone, relMSE and SSIM their mean, s/frame the sessions' median throughput; "
+           "the accumulating columns: one session accumulated for the time given, its images after 1, 2, 4, ... "
+           "frames (an accumulated frame of igi's converging estimator costs more than a frame alone, "
+           "and the cache computes records for each accumulated frame's own light paths)",
            "- relMSE at t: the curve read at t seconds of render time (log-log between its images), and "
            "its ratio to igi's at the same time; '-' where the renderer has no image yet at t or its curve "
            "ended before", ""]
@@ -1162,6 +1204,7 @@ def write_modes_report(bench, docs, command, started):
                    "settings": {"width": a.width, "height": a.height, "clients": a.clients, "seconds": a.seconds,
                                 "min_frames": a.min_frames, "modes": a.modes},
                    "references": bench.refs, "curves": bench.curves, "notes": bench.notes,
+                   "alone": bench.alone_rows,
                    "pareto": [r for r in rows if r["pareto"]]}, f, indent=1, default=str)
     return {f"modes-{a.width}x{a.height}": text.rstrip()}
 

@@ -57,7 +57,9 @@ class Run:
     def scene_file(self, name, obj):
         path = os.path.join(self.a.out, name + ".json")
         with open(path, "w", encoding="utf-8") as f:
-            json.dump({"camera": CAMERA, "meshes": [{"file": os.path.join(SHARED, obj)}]}, f, indent=1)
+            # Relative: a scene bundle holds paths relative to its scene file.
+            json.dump({"camera": CAMERA, "meshes": [{"file": os.path.relpath(os.path.join(SHARED, obj), self.a.out)}]},
+                      f, indent=1)
         return path
 
     def master(self, scene, extra, out, frames, sequence=None):

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -51,6 +53,13 @@ inline const char* giModeName(GiMode mode) {
 
 /// The most photon groups of simulated photon mapping: every frame checks a photon of each.
 constexpr int kMaxPhotonmapGroups = 65536;
+/// The most photons of simulated photon mapping (groups x photons per group): each keeps its
+/// path and its hits on every client.
+constexpr int kMaxPhotonmapPhotons = 1 << 20;
+/// The photons per group that `groups` groups may have.
+inline int maxPhotonmapPhotonsPerGroup(int groups) {
+    return std::min(4096, kMaxPhotonmapPhotons / std::max(1, groups));
+}
 
 /// The most path groups of selective photon tracing: every scene change checks each one.
 constexpr int kMaxSptGroups = 65536;

@@ -44,12 +44,13 @@ void readIntegrator(const JsonNode& section, RenderSettings& s) {
     readInt(section, "spt_budget", 1, kMaxSptGroups, s.sptBudget);
     // Instant caching: site spacing (a fraction of the diagonal) and interpolation radius (in
     // spacings; below 1 many points find no site and are lit directly).
-    readFloat(section, "cache_spacing", NumberRange::open(0, 1), s.cacheSpacing);
+    readFloat(section, "cache_spacing", NumberRange::closed(1e-6, 0.999), s.cacheSpacing);
     readFloat(section, "cache_radius", NumberRange::closed(0.5, 16), s.cacheRadius);
     // Simulated photon mapping: photons (groups x photons per group), the radiance estimate's
     // neighbours, the final gather's rays and where the caustics are filtered.
     readInt(section, "photonmap_groups", 1, kMaxPhotonmapGroups, s.photonmapGroups);
-    readInt(section, "photonmap_photons", 1, 4096, s.photonmapPhotons);
+    readInt(section, "photonmap_photons", 1, maxPhotonmapPhotonsPerGroup(s.photonmapGroups),
+            s.photonmapPhotons);
     readInt(section, "photonmap_neighbours", 1, 4096, s.photonmapNeighbours);
     readInt(section, "photonmap_gather", 1, 65536, s.photonmapGather);
     if (auto v = section.find("photonmap_caustics"))

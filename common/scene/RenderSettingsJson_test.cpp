@@ -74,7 +74,8 @@ TEST(RenderSettingsJson, CacheAndPhotonmapKeys) {
     EXPECT_EQ(s.photonmapGather, 16);
     EXPECT_EQ(giModeName(s.gi), std::string("photonmap"));
     for (const char* bad : {R"({"cache_spacing": 0})", R"({"cache_radius": 0.1})",
-                            R"({"photonmap_caustics": "hashed"})", R"({"photonmap_photons": 0})"})
+                            R"({"photonmap_caustics": "hashed"})", R"({"photonmap_photons": 0})",
+                            R"({"photonmap_groups": 65536, "photonmap_photons": 64})"})
         EXPECT_THROW(applyRenderSettingsJson(nlohmann::json::parse(bad), s, "f", ""), SceneError)
             << bad;
     EXPECT_FALSE(s.photonmapScreenCaustics);

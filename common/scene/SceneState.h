@@ -29,8 +29,13 @@ struct SceneState {
     bool operator==(const SceneState&) const = default;
     /// Whether everything but the camera is equal: the light in the scene is the same.
     bool sameLighting(const SceneState& o) const {
-        return transforms == o.transforms && materials == o.materials &&
-               pointLights == o.pointLights && quadLights == o.quadLights;
+        return transforms == o.transforms && sameLightsAndMaterials(o);
+    }
+    /// The same emitters and materials (objects may have moved): a light path that meets the
+    /// same surfaces carries the same power.
+    bool sameLightsAndMaterials(const SceneState& o) const {
+        return materials == o.materials && pointLights == o.pointLights &&
+               quadLights == o.quadLights;
     }
 };
 
