@@ -20,6 +20,11 @@
 #                     and accumulation curve at the same settings, and the ratios new / old
 #   --ref DIR         where the cached references are (default out/reference/): e.g. those of
 #                     another worktree, which saves their hours of path tracing
+#   --seconds S       render time the accumulation and Cycles curves span (default 60)
+#   --min-frames N    accumulated frames at least (default 256)
+#   --ref-spp N, --ref-frames N
+#                     the references' spp per frame and frames, both halves together (default
+#                     64 and 256: 16384 spp)
 #   --modes cache,photonmap
 #                     a run of the GI modes instead: igi, each mode and our path tracer accumulated
 #                     per scene (no sweeps, no claims); writes docs/accuracy/modes-WxH/ and only the

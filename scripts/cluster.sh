@@ -247,6 +247,9 @@ status() {
   done
 }
 ticks=$((status_seconds > 0 ? status_seconds * 10 : 10))  # of 0.1 s
+# A first line at once (the master answers, the clients are on their way): a short session can
+# end before the first interval does, and would show none.
+((status_seconds > 0)) && status
 while kill -0 "$master_pid" 2>/dev/null; do
   for ((t = 0; t < ticks; t++)); do
     kill -0 "$master_pid" 2>/dev/null || break 2
