@@ -6,8 +6,6 @@
 namespace igi {
 namespace {
 
-// Normals of a point and a site farther apart than about 25 degrees are not interpolated.
-constexpr float kMaxAngleCos = 0.9f;
 // Frames whose records are kept for tiles still in flight.
 constexpr std::uint32_t kKeptFrames = 8;
 
@@ -44,7 +42,7 @@ CacheLighting::CacheLighting(const LightingSetBuilder& builder, const TraceableS
     // As LightingSetBuilder computes the first frame's bound.
     const float minDistance = settings.clampDistance * scene.diagonal();
     config_.radius = std::max(sites_->spacing, 1e-30f) * settings.cacheRadius;
-    config_.maxAngleCos = kMaxAngleCos;
+    config_.maxAngleCos = kInterpolationMaxAngleCos;
     config_.minDistance2 = minDistance * minDistance;
     config_.keepVisibility = true;
 

@@ -93,6 +93,9 @@ struct SiteWeights {
     const SiteWeight* begin() const { return items; }
     const SiteWeight* end() const { return items + count; }
 };
+/// The cache modes' maxAngleCos: normals farther apart than about 25 degrees are not
+/// interpolated.
+constexpr float kInterpolationMaxAngleCos = 0.9f;
 void interpolationWeights(const SiteGrid& grid, glm::vec3 p, glm::vec3 n, float maxAngleCos,
                           SiteWeights& out);
 

@@ -2,9 +2,8 @@
 
 #include <cstdint>
 #include <limits>
-#include <vector>
-
 #include <memory>
+#include <vector>
 
 #include "ConnectionBound.h"
 #include "SurfacePoint.h"

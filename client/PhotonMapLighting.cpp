@@ -6,8 +6,6 @@
 namespace igi {
 namespace {
 
-// As instant caching's (CacheLighting).
-constexpr float kMaxAngleCos = 0.9f;
 // Frames whose screen caustics and emission steps are kept for tiles still in flight (the
 // master has at most a few frames open at once).
 constexpr std::uint32_t kKeptFrames = 8;
@@ -33,7 +31,7 @@ PhotonMapLighting::PhotonMapLighting(const LightingSetBuilder& builder, const Tr
                                          : std::make_shared<const CacheSites>(CacheSites::forScene(
                                                scene.geometry().scene(), settings));
     config_.radius = std::max(sites_->spacing, 1e-30f) * settings.cacheRadius;
-    config_.maxAngleCos = kMaxAngleCos;
+    config_.maxAngleCos = kInterpolationMaxAngleCos;
     config_.gatherRays = settings.photonmapGather;
     config_.maxEyeDepth = settings.maxEyeDepth;
     config_.seed = settings.seed;
