@@ -1,14 +1,36 @@
 #include "FrameCompositor.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <vector>
+
+#include "render/RowFilter.h"
 
 namespace igi {
 namespace {
 
-constexpr int kRowsPerBlock = 16;
-
 bool withdrawBlur(const RenderSettings& s) {
     return s.accumulate && s.progressiveFilter;
+}
+
+/// One thread's rows in flight: the frame rows the filter's window reads (row y in slot
+/// y % size), the filtered row, and the variance rows the means read (the same way). Kept
+/// from frame to frame, so that no frame allocates.
+struct Workspace {
+    std::vector<FrameRow> rows;
+    ShadedRow shaded;
+    std::vector<std::vector<double>> variance;
+    std::vector<const double*> window;  ///< the variance rows of one mean
+};
+
+Workspace& workspace(int filterRows, int noiseRows, std::size_t varianceEntries) {
+    thread_local Workspace w;
+    w.rows.resize(std::size_t(filterRows));
+    for (FrameRow& r : w.rows) r.y = -1;  // a row of another frame is not this frame's
+    w.variance.resize(std::size_t(noiseRows));
+    for (auto& v : w.variance) v.resize(varianceEntries);
+    w.window.resize(std::size_t(noiseRows));
+    return w;
 }
 
 }  // namespace
@@ -21,58 +43,102 @@ FrameCompositor::FrameCompositor(int width, int height, const RenderSettings& se
       filter_{settings.effectiveFilterX(), settings.effectiveFilterY(),
               settings.filterDepthThreshold, settings.filterNormalThreshold},
       pool_(pool),
+      order_(width, settings.interleaveX),
+      // Four blocks a thread: enough to balance them, few enough that the rows read across a
+      // block's edges (decoded twice, averaged in a second sweep) stay a small share.
+      rowsPerBlock_(std::max(16, (height + 4 * int(pool.size()) - 1) / (4 * int(pool.size())))),
       filtered_(width, height),
-      unfiltered_(withdrawBlur(settings) ? width : 0, withdrawBlur(settings) ? height : 0),
-      shown_(width, height) {
-    accumulator_.reset(width, height, withdrawBlur(settings), filter_.sizeX, filter_.sizeY);
+      shown_(accumulate_ ? width : 0, accumulate_ ? height : 0) {
+    if (filter_.sizeY > FilterWindow::kMaxRows)
+        throw std::invalid_argument("filter window taller than " +
+                                    std::to_string(FilterWindow::kMaxRows) + " rows");
+    accumulator_.reset(order_, height, withdrawBlur(settings), filter_.sizeX, filter_.sizeY);
 }
 
 template <typename F>
 void FrameCompositor::forRowBlocks(F&& f) {
-    const int blocks = (height_ + kRowsPerBlock - 1) / kRowsPerBlock;
+    const int blocks = (height_ + rowsPerBlock_ - 1) / rowsPerBlock_;
     pool_.parallelFor(std::size_t(blocks), [&](std::size_t b) {
-        const int begin = int(b) * kRowsPerBlock;
-        f(begin, std::min(height_, begin + kRowsPerBlock));
+        const int begin = int(b) * rowsPerBlock_;
+        f(begin, std::min(height_, begin + rowsPerBlock_));
     });
 }
 
+const Image& FrameCompositor::composite(const proto::CodedFrame& frame) {
+    if (frame.width() != width_ || frame.height() != height_ ||
+        frame.order().cells() != order_.cells())
+        throw std::logic_error("a coded frame of another shape than the compositor's");
+    return composite([&](int y, FrameRow& row) { frame.decodeRow(y, row); }, frame.live(kGlossy));
+}
+
 const Image& FrameCompositor::composite(const FrameBuffer& frame) {
+    return composite([&](int y, FrameRow& row) { splitRow(frame, y, order_, row); },
+                     frame.live.has(kGlossy));
+}
+
+const Image& FrameCompositor::composite(const RowSource& source, bool glossy) {
     // One sweep per block of rows: each row is filtered, added to the accumulation and, as
     // soon as the rows its mean reads are in, averaged, all while it is still in the cache.
     // A mean that reads a row of another block waits for the second sweep.
     const int after = accumulator_.frames() + 1;  // frames once this one is added
+    const bool unfiltered = accumulate_ && accumulator_.withdrawsBlur();
+    const int noiseRows = std::max(1, filter_.sizeY);
     forRowBlocks([&](int begin, int end) {
-        DiscontinuityRowFilter filter(frame, filter_);
+        Workspace& w =
+            workspace(std::max(1, filter_.sizeY), noiseRows, accumulator_.varianceEntries());
         int next = begin;  // the first row whose mean is neither written nor left for later
         for (int y = begin; y < end; ++y) {
-            filter.filterRow(y, filtered_.pixels);
-            if (!accumulate_) continue;
-            if (accumulator_.withdrawsBlur()) {
-                compositeUnfilteredRows(frame, y, y + 1, unfiltered_.pixels);
-                accumulator_.addRows(filtered_.pixels, unfiltered_.pixels, y, y + 1);
-            } else {
-                accumulator_.addRows(filtered_.pixels, y, y + 1);
+            FilterWindow window;
+            const int y0 = filterWindowStart(y, filter_.sizeY, height_);
+            window.count = std::min(height_, y0 + filter_.sizeY) - y0;
+            for (int k = 0; k < window.count; ++k) {
+                FrameRow& row = w.rows[std::size_t(y0 + k) % w.rows.size()];
+                if (row.y != y0 + k) source(y0 + k, row);
+                window.rows[k] = &row;
             }
+            window.centre = &w.rows[std::size_t(y) % w.rows.size()];
+            filterRow(window, order_, filter_, glossy, unfiltered, w.shaded);
+            if (!accumulate_) {
+                toImageOrder(order_, w.shaded[ShadedRow::kFr], w.shaded[ShadedRow::kFg],
+                             w.shaded[ShadedRow::kFb],
+                             filtered_.pixels.data() + std::size_t(y) * width_);
+                continue;
+            }
+            accumulator_.addRow(y, w.shaded, w.variance[std::size_t(y) % w.variance.size()].data());
             for (; next <= y; ++next) {
                 const auto [first, last] = accumulator_.meanWindow(next);
                 if (last > y + 1) break;  // reads rows not added yet
-                if (first >= begin) accumulator_.meanRows(shown_.pixels, next, next + 1, after);
+                if (first < begin) continue;
+                for (int k = 0; k < last - first; ++k)
+                    w.window[std::size_t(k)] =
+                        w.variance[std::size_t(first + k) % w.variance.size()].data();
+                accumulator_.meanRow(next, after, w.window.data(),
+                                     shown_.pixels.data() + std::size_t(next) * width_);
             }
         }
     });
     if (!accumulate_) return filtered_;
     accumulator_.endFrame();
     forRowBlocks([&](int begin, int end) {
+        Workspace* w = nullptr;
         for (int y = begin; y < end; ++y) {
             const auto [first, last] = accumulator_.meanWindow(y);
-            if (first < begin || last > end) accumulator_.meanRows(shown_.pixels, y, y + 1);
+            if (first >= begin && last <= end) continue;
+            if (!w) w = &workspace(1, noiseRows, accumulator_.varianceEntries());
+            // The variance of rows of other blocks, from the sums: what adding them gave.
+            for (int k = 0; k < last - first; ++k) {
+                accumulator_.varianceRow(first + k, after, w->variance[std::size_t(k)].data());
+                w->window[std::size_t(k)] = w->variance[std::size_t(k)].data();
+            }
+            accumulator_.meanRow(y, after, w->window.data(),
+                                 shown_.pixels.data() + std::size_t(y) * width_);
         }
     });
     return shown_;
 }
 
 void FrameCompositor::resetAccumulation() {
-    accumulator_.reset(width_, height_, accumulator_.withdrawsBlur(), filter_.sizeX, filter_.sizeY);
+    accumulator_.reset(order_, height_, accumulator_.withdrawsBlur(), filter_.sizeX, filter_.sizeY);
 }
 
 }  // namespace igi

@@ -1,33 +1,45 @@
 #pragma once
 
+#include <functional>
+
+#include "CodedFrame.h"
 #include "image/Image.h"
-#include "render/Accumulator.h"
+#include "render/CellOrder.h"
 #include "render/DiscontinuityFilter.h"
 #include "render/FrameBuffer.h"
+#include "render/FrameRow.h"
 #include "render/RenderSettings.h"
+#include "render/RowAccumulator.h"
 #include "util/ThreadPool.h"
 
 namespace igi {
 
 /// Turns assembled frames into images on all the master's cores: the discontinuity buffer,
-/// then accumulation of successive frames while nothing changes.
+/// then accumulation of successive frames while nothing changes. The results are bit for bit
+/// those of discontinuityFilterRows and Accumulator (the reference, one pass after the other),
+/// in one sweep over each block of rows: a row is dequantized, filtered, added and averaged
+/// while it is in the cache, eight pixels at a time.
 class FrameCompositor {
   public:
     FrameCompositor(int width, int height, const RenderSettings& settings, ThreadPool& pool);
 
     /// Filters `frame`, adds it to the accumulation (when enabled) and returns what to show:
-    /// the running mean, or the frame itself without accumulation.
+    /// the running mean, or the frame itself without accumulation. The frame's cells must be
+    /// the settings' interleaving.
+    const Image& composite(const proto::CodedFrame& frame);
+    /// The same for a frame of floats (tests, tools).
     const Image& composite(const FrameBuffer& frame);
 
     /// Starts a new accumulation (the view or the scene changed).
     void resetAccumulation();
     int accumulatedFrames() const { return accumulator_.frames(); }
-    /// The last frame, filtered but not accumulated.
-    const Image& lastFrame() const { return filtered_; }
     /// What composite() last returned: the accumulated mean, or the last frame.
     const Image& shown() const { return accumulate_ ? shown_ : filtered_; }
 
   private:
+    /// Fills `row` with row y of the frame being composited (in order_).
+    using RowSource = std::function<void(int y, FrameRow& row)>;
+    const Image& composite(const RowSource& rows, bool glossy);
     template <typename F>
     void forRowBlocks(F&& f);
 
@@ -36,9 +48,10 @@ class FrameCompositor {
     bool accumulate_;
     DiscontinuityFilterSettings filter_;
     ThreadPool& pool_;
-    Accumulator accumulator_;
-    Image filtered_;
-    Image unfiltered_;  ///< the frame without the buffer, for the progressive filter
+    CellOrder order_;
+    int rowsPerBlock_;
+    RowAccumulator accumulator_;
+    Image filtered_;  ///< the last frame, filtered: what is shown without accumulation
     Image shown_;
 };
 

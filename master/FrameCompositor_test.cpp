@@ -5,59 +5,129 @@
 
 #include <gtest/gtest.h>
 
+#include "ByteReader.h"
+#include "ChannelCodec.h"
+#include "TestTiles.h"
+#include "render/Accumulator.h"
 #include "render/DiscontinuityFilter.h"
 
 namespace igi {
 namespace {
 
-FrameBuffer noisyFrame(int w, int h, std::uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    FrameBuffer f;
-    f.reset(w, h);
-    for (std::size_t p = 0; p < f.depth.size(); ++p) {
-        const int x = int(p % std::size_t(w));
-        f.depth[p] = x < w / 2 ? 2.0f : 3.0f;  // a depth edge, where the blur is biased
-        f.normal[p] = glm::vec3(0, 0, 1);
-        f.reflectance[p] = glm::vec3(0.6f);
-        f.irradiance[p] = glm::vec3(x < w / 2 ? 1.0f : 4.0f) * (0.5f + u(rng));
-        f.unfiltered[p] = u(rng) < 0.1f ? glm::vec3(u(rng)) : glm::vec3(0.0f);
+/// The passes one after the other, as the master composited before it kept codes: every tile
+/// decoded to floats and scattered, every row filtered, then the frame added and averaged.
+class Reference {
+  public:
+    Reference(int width, int height, const RenderSettings& s)
+        : width_(width),
+          height_(height),
+          settings_(s),
+          filter_{s.effectiveFilterX(), s.effectiveFilterY(), s.filterDepthThreshold,
+                  s.filterNormalThreshold} {
+        reset();
     }
-    return f;
+    void reset() {
+        accumulator_.reset(width_, height_, settings_.accumulate && settings_.progressiveFilter,
+                           filter_.sizeX, filter_.sizeY);
+    }
+    FrameBuffer assemble(const std::vector<Tile>& tiles,
+                         const std::vector<std::vector<std::uint8_t>>& wire) const {
+        FrameBuffer f;
+        f.reuse(width_, height_);
+        for (std::size_t i = 0; i < tiles.size(); ++i) {
+            proto::ByteReader in(wire[i], "TileResult");
+            f.scatter(tiles[i], settings_.interleaveX, settings_.interleaveY,
+                      proto::readTileChannels(in));
+        }
+        return f;
+    }
+    std::vector<glm::vec3> composite(const FrameBuffer& f) {
+        const std::size_t pixels = std::size_t(width_) * height_;
+        std::vector<glm::vec3> filtered(pixels), unfiltered(pixels), mean(pixels);
+        discontinuityFilterRows(f, filter_, 0, height_, filtered);
+        if (!settings_.accumulate) return filtered;
+        compositeUnfilteredRows(f, 0, height_, unfiltered);
+        accumulator_.addRows(filtered, unfiltered, 0, height_);
+        accumulator_.endFrame();
+        accumulator_.meanRows(mean, 0, height_);
+        return mean;
+    }
+
+  private:
+    int width_, height_;
+    RenderSettings settings_;
+    DiscontinuityFilterSettings filter_;
+    Accumulator accumulator_;
+};
+
+struct Case {
+    int width, height, n, m, tileSize;
+    bool accumulate, progressive;
+    unsigned threads;
+};
+
+std::string name(const Case& c) {
+    return std::to_string(c.width) + "x" + std::to_string(c.height) + " interleave " +
+           std::to_string(c.n) + "x" + std::to_string(c.m) + " accumulate " +
+           std::to_string(c.accumulate) + " progressive " + std::to_string(c.progressive) +
+           " threads " + std::to_string(c.threads);
 }
 
-// The compositor filters, accumulates and averages in one sweep over blocks of rows, on
-// several threads, leaving the rows whose mean reads another block for a second sweep. The
-// result must be the straightforward passes' (filter every row, add, end the frame, mean),
-// frame after frame, bit for bit, at heights that cut blocks anywhere.
-TEST(FrameCompositor, OneSweepEqualsTheSeparatePasses) {
-    for (const int height : {5, 16, 17, 47}) {
-        const int width = 29;
+// The compositor dequantizes, filters, accumulates and averages in one sweep over blocks of
+// rows, on several threads, leaving the rows whose mean reads another block for a second
+// sweep. What it shows must be the reference's, frame after frame, bit for bit: from the coded
+// frame the master assembles and from a frame of floats, at heights that cut blocks anywhere,
+// for every interleaving, with accumulation (and the progressive filter) on and off, across a
+// reset of the accumulation and planes that come to life in a later frame.
+TEST(FrameCompositor, OneSweepEqualsTheSeparatePassesBitForBit) {
+    const Case cases[] = {
+        {29, 5, 3, 3, 2, true, true, 3},   {29, 17, 3, 3, 2, true, true, 1},
+        {29, 47, 3, 3, 4, true, true, 3},  {64, 70, 3, 3, 32, true, true, 2},
+        {31, 33, 2, 4, 3, true, true, 3},  {23, 19, 1, 1, 8, true, true, 2},
+        {40, 37, 3, 3, 4, true, false, 3}, {40, 21, 3, 3, 4, false, false, 2},
+        {97, 50, 4, 4, 5, true, true, 4},
+    };
+    std::mt19937 rng(9);
+    for (const Case& c : cases) {
         RenderSettings settings;
-        ThreadPool pool(3);
-        FrameCompositor compositor(width, height, settings, pool);
-        const DiscontinuityFilterSettings filter{
-            settings.effectiveFilterX(), settings.effectiveFilterY(), settings.filterDepthThreshold,
-            settings.filterNormalThreshold};
-        Accumulator reference;
-        reference.reset(width, height, true, filter.sizeX, filter.sizeY);
-        std::vector<glm::vec3> filtered(std::size_t(width) * height), unfiltered(filtered.size()),
-            mean(filtered.size());
-        for (int frame = 0; frame < 6; ++frame) {
-            const FrameBuffer f = noisyFrame(width, height, std::uint32_t(frame + 1));
-            discontinuityFilterRows(f, filter, 0, height, filtered);
-            compositeUnfilteredRows(f, 0, height, unfiltered);
-            reference.addRows(filtered, unfiltered, 0, height);
-            reference.endFrame();
-            reference.meanRows(mean, 0, height);
-            const Image& shown = compositor.composite(f);
-            ASSERT_EQ(compositor.accumulatedFrames(), frame + 1);
-            ASSERT_EQ(std::memcmp(shown.pixels.data(), mean.data(), mean.size() * sizeof(mean[0])),
-                      0)
-                << "height " << height << ", frame " << frame;
-            ASSERT_EQ(std::memcmp(compositor.lastFrame().pixels.data(), filtered.data(),
-                                  filtered.size() * sizeof(filtered[0])),
-                      0);
+        settings.interleaveX = c.n, settings.interleaveY = c.m, settings.tileSize = c.tileSize;
+        settings.accumulate = c.accumulate, settings.progressiveFilter = c.progressive;
+        const auto tiles = makeTiles(c.width, c.height, c.n, c.m, c.tileSize);
+        ThreadPool pool(c.threads);
+        FrameCompositor coded(c.width, c.height, settings, pool);
+        FrameCompositor floats(c.width, c.height, settings, pool);
+        Reference reference(c.width, c.height, settings);
+        proto::CodedFrame buffers[2];
+        std::vector<std::uint8_t> raw;
+        for (int frame = 0; frame < 7; ++frame) {
+            if (frame == 4) {  // the view moved
+                coded.resetAccumulation();
+                floats.resetAccumulation();
+                reference.reset();
+            }
+            proto::test::RandomTiles random;
+            random.extremeScales = frame % 3 == 2;
+            if (frame >= 2) random.planes |= kGlossy;
+            const auto wire = random.encoded(tiles, c.n, c.m, rng);
+            proto::CodedFrame& buffer = buffers[frame % 2];
+            buffer.reuse(c.width, c.height, c.n, c.m, c.tileSize);
+            for (std::size_t i = 0; i < tiles.size(); ++i) {
+                proto::ByteReader in(wire[i], "TileResult");
+                buffer.scatter(tiles[i], proto::readTileCodes(in, raw));
+            }
+            const FrameBuffer f = reference.assemble(tiles, wire);
+            const auto expected = reference.composite(f);
+            for (FrameCompositor* compositor : {&coded, &floats}) {
+                const Image& shown =
+                    compositor == &coded ? compositor->composite(buffer) : compositor->composite(f);
+                ASSERT_EQ(&shown, &compositor->shown());
+                ASSERT_EQ(compositor->accumulatedFrames(), c.accumulate ? frame % 4 + 1 : 0);
+                for (std::size_t p = 0; p < expected.size(); ++p)
+                    ASSERT_EQ(std::memcmp(&shown.pixels[p], &expected[p], sizeof(glm::vec3)), 0)
+                        << name(c) << (compositor == &coded ? " coded" : " floats") << " frame "
+                        << frame << " pixel " << p << ": " << shown.pixels[p].x << " vs "
+                        << expected[p].x;
+            }
         }
     }
 }

@@ -54,10 +54,13 @@ constexpr double kDuplicateAfterSeconds = 0.05;
 // core idled in every frame's tail and reached 60-70 % of linear scaling; with four, linear
 // (scripts/bench_performance.sh, docs/PERFORMANCE.md).
 constexpr std::uint32_t kFramesInFlight = 4;
-// Each open frame holds a full-size FrameBuffer: big images open fewer frames (never fewer
+// Each open frame holds a full-size CodedFrame: big images open fewer frames (never fewer
 // than two, which pipelining needs) to keep these buffers within this budget.
 constexpr std::size_t kOpenFrameBufferBudget = std::size_t{1} << 30;
-constexpr std::size_t kFrameBufferBytesPerPixel = 4 * sizeof(glm::vec3) + sizeof(float);
+constexpr std::size_t kFrameBufferBytesPerPixel = proto::CodedFrame::kBytesPerPixel;
+
+// A tile decoder's buffer bigger than this (a huge tile) is given back after the tile.
+constexpr std::size_t kKeepDecodeBufferBytes = std::size_t{4} << 20;
 
 double secondsSince(Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
@@ -291,7 +294,9 @@ void Master::openFramesAsNeeded() {
             record->buffer = std::move(spareBuffers_.back());
             spareBuffers_.pop_back();
         }
-        record->buffer.reuse(scene_.image.width, scene_.image.height);
+        const RenderSettings& rs = scene_.render;
+        record->buffer.reuse(scene_.image.width, scene_.image.height, rs.interleaveX,
+                             rs.interleaveY, rs.tileSize);
         record->opened = Clock::now();
         record->epoch = start.epoch;
         // Accumulation restarts with every epoch (finishReadyFrames), so a frame's place in
@@ -366,28 +371,27 @@ void Master::onTileResult(Session& s, const proto::Header& header,
     FrameRecord* record = frames_.at(header.frame).get();
     ++record->decoding;
     const Tile tile = layout[tileId];
-    const RenderSettings& rs = scene_.render;
-    pool_.submit([this, id = s.id, header, tileId, tile, n = rs.interleaveX, m = rs.interleaveY,
-                  record, wireBytes, payload = std::move(payload)] {
-        const auto start = Clock::now();
-        std::string error;
-        proto::TileStats tileStats;
-        try {
-            auto result = std::get<proto::TileResult>(proto::decodeMessage(header, payload));
-            if (result.channels.count != tile.pixelCount(n, m))
-                throw proto::ProtocolError(
-                    "a result with " + std::to_string(result.channels.count) +
-                    " pixels for a tile of " + std::to_string(tile.pixelCount(n, m)));
-            record->buffer.scatter(tile, n, m, result.channels);
-            tileStats = result.stats;
-        } catch (const std::exception& e) {
-            error = std::string("bad tile result: ") + e.what();
-        }
-        const double seconds = secondsSince(start);
-        boost::asio::post(io_, [=, this] {
-            onTileDecoded(id, header.frame, tileId, error, tileStats, wireBytes, seconds);
+    pool_.submit(
+        [this, id = s.id, header, tileId, tile, record, wireBytes, payload = std::move(payload)] {
+            const auto start = Clock::now();
+            std::string error;
+            proto::TileStats tileStats;
+            try {
+                // Decompressed into this thread's buffer and copied into the frame as codes: the
+                // compositor dequantizes them as it filters (CodedFrame.h).
+                thread_local std::vector<std::uint8_t> raw;
+                const auto result = proto::decodeTileResultCodes(header, payload, raw);
+                record->buffer.scatter(tile, result.codes);  // checks the pixel count first
+                tileStats = result.stats;
+                if (raw.capacity() > kKeepDecodeBufferBytes) std::vector<std::uint8_t>().swap(raw);
+            } catch (const std::exception& e) {
+                error = std::string("bad tile result: ") + e.what();
+            }
+            const double seconds = secondsSince(start);
+            boost::asio::post(io_, [=, this] {
+                onTileDecoded(id, header.frame, tileId, error, tileStats, wireBytes, seconds);
+            });
         });
-    });
     dispatch();
 }
 

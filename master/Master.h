@@ -14,6 +14,7 @@
 #include <boost/asio/signal_set.hpp>
 #include <nlohmann/json.hpp>
 
+#include "CodedFrame.h"
 #include "ControlServer.h"
 #include "FrameCompositor.h"
 #include "LocalClients.h"
@@ -26,7 +27,6 @@
 #include "ViewServer.h"
 #include "net/ClusterKey.h"
 #include "net/Connection.h"
-#include "render/FrameBuffer.h"
 #include "scene/Scene.h"
 #include "scene/SceneLoader.h"
 #include "util/ThreadPool.h"
@@ -64,7 +64,7 @@ class Master {
         std::chrono::steady_clock::time_point lastResult;
     };
     struct FrameRecord {
-        FrameBuffer buffer;
+        proto::CodedFrame buffer;
         std::chrono::steady_clock::time_point opened;
         std::uint32_t epoch = 0;  ///< the scene state every tile of it renders
         /// Its place in the accumulation (TileAssign::accumulation): frames since its epoch
@@ -157,8 +157,8 @@ class Master {
     std::map<ClientId, Session> sessions_;
     std::map<std::uint32_t, std::unique_ptr<FrameRecord>> frames_;
     /// Buffers of composited frames, for the frames to come: a fresh one would cost the master
-    /// its page faults and clearing every frame (FrameBuffer::reuse).
-    std::vector<FrameBuffer> spareBuffers_;
+    /// its page faults and clearing every frame (CodedFrame::reuse).
+    std::vector<proto::CodedFrame> spareBuffers_;
     bool compositing_ = false;
     ClientId nextClientId_ = 1;
     std::uint32_t nextFrameToOpen_ = 0;

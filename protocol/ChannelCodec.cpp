@@ -10,17 +10,12 @@
 #include "Compression.h"
 #include "ProtocolError.h"
 #include "Quantize.h"
+#include "TileCodes.h"
 
 namespace igi::proto {
 namespace {
 
 constexpr int kZstdLevel = 1;  // tiles are many and small: speed over the last few percent
-
-std::string hex(std::uint32_t v) {
-    char buf[16];
-    std::snprintf(buf, sizeof buf, "0x%x", v);
-    return buf;
-}
 
 /// Per-thread buffers of the codec, reused from tile to tile (a tile's allocations cost about
 /// as much as its pixels). Whatever grew past `kKeepBytes` (a huge tile) is given back.
@@ -158,31 +153,12 @@ class PlaneWriter {
     std::size_t referenceCount_ = 0;
 };
 
-/// Reads the sent planes' codes off the raw bytes in bit order.
-class PlaneReader {
-  public:
-    PlaneReader(Scratch& scratch, std::size_t count) : scratch_(scratch), count_(count) {}
-
-    template <std::uint32_t Bytes>
-    std::span<const std::uint32_t> next() {
-        const auto w = scratch_.wordsFor(count_);
-        getShuffled<Bytes>(scratch_.raw.data() + offset_, w);
-        offset_ += Bytes * count_;
-        return w;
-    }
-
-  private:
-    Scratch& scratch_;
-    std::size_t count_;
-    std::size_t offset_ = 0;
-};
-
-float readReference(ByteReader& in, const char* name) {
-    const float r = in.f32();
-    if (!(r > 0.0f) || !std::isfinite(r))
-        in.fail(std::string("tile ") + name + " reference " + std::to_string(r) +
-                " is not a finite positive number");
-    return r;
+/// A sent plane's codes as words (getShuffled), in the scratch.
+template <std::uint32_t Bytes>
+std::span<const std::uint32_t> words(Scratch& scratch, const TileCodes& codes, Channel c) {
+    const auto w = scratch.wordsFor(codes.count);
+    getShuffled<Bytes>(codes.bytes(c), w);
+    return w;
 }
 
 }  // namespace
@@ -259,42 +235,26 @@ void writeTileChannels(ByteWriter& out, const TileChannels& channels) {
 }
 
 TileChannels readTileChannels(ByteReader& in) {
-    const std::uint32_t count = in.u32();
-    const std::uint32_t planes = in.u32();
-    const std::uint32_t sent = in.u32();
-    if (count > kMaxTilePixels)
-        in.fail("tile of " + std::to_string(count) + " pixels, the limit is " +
-                std::to_string(kMaxTilePixels));
-    if (planes & ~kAllChannels) in.fail("unknown channel bits in mask " + hex(planes));
-    if (sent & ~planes)
-        in.fail("sent planes " + hex(sent) + " are not a subset of the tile's planes " +
-                hex(planes));
-    if (count == 0 && planes != 0) in.fail("an empty tile names planes " + hex(planes));
-
-    float irradianceScale = 0, depthMin = 0, unfilteredScale = 0, glossyScale = 0;
-    if (sent & kIrradiance) irradianceScale = readReference(in, "irradiance");
-    if (sent & kDepth) depthMin = readReference(in, "depth");
-    if (sent & kUnfiltered) unfilteredScale = readReference(in, "unfiltered");
-    if (sent & kGlossy) glossyScale = readReference(in, "glossy");
-
     ThreadScratch scratch;
-    if (sent != 0) {
-        // The frame must declare exactly this size, which the count bounds: checked before the
-        // planes are allocated.
-        const std::size_t rawSize = std::size_t{bytesPerPixel(sent)} * count;
-        zstdDecompressExactInto(in.blob(), rawSize, in.what(), (*scratch).raw);
-    }
+    const TileCodes codes = readTileCodes(in, (*scratch).raw);
     TileChannels channels;
-    channels.resize(static_cast<int>(count), planes);
-    PlaneReader r(*scratch, count);
+    channels.resize(static_cast<int>(codes.count), codes.planes);
+    const std::uint32_t sent = codes.sent;
+    Scratch& s = *scratch;
     if (sent & kIrradiance)
-        decodeSharedExponents(r.next<kIrradianceBytes>(), irradianceScale, channels.irradiance);
-    if (sent & kReflectance) decodeSrgb8Triples(r.next<kReflectanceBytes>(), channels.reflectance);
-    if (sent & kNormal) decodeOctNormals(r.next<kNormalBytes>(), channels.normal);
-    if (sent & kDepth) decodeLogDepths(r.next<kDepthBytes>(), depthMin, channels.depth);
+        decodeSharedExponents(words<kIrradianceBytes>(s, codes, kIrradiance), codes.irradianceScale,
+                              channels.irradiance);
+    if (sent & kReflectance)
+        decodeSrgb8Triples(words<kReflectanceBytes>(s, codes, kReflectance), channels.reflectance);
+    if (sent & kNormal) decodeOctNormals(words<kNormalBytes>(s, codes, kNormal), channels.normal);
+    if (sent & kDepth)
+        decodeLogDepths(words<kDepthBytes>(s, codes, kDepth), codes.depthMin, channels.depth);
     if (sent & kUnfiltered)
-        decodeSharedExponents(r.next<kUnfilteredBytes>(), unfilteredScale, channels.unfiltered);
-    if (sent & kGlossy) decodeSharedExponents(r.next<kGlossyBytes>(), glossyScale, channels.glossy);
+        decodeSharedExponents(words<kUnfilteredBytes>(s, codes, kUnfiltered), codes.unfilteredScale,
+                              channels.unfiltered);
+    if (sent & kGlossy)
+        decodeSharedExponents(words<kGlossyBytes>(s, codes, kGlossy), codes.glossyScale,
+                              channels.glossy);
     return channels;
 }
 

@@ -219,15 +219,20 @@ TileAssign readTileAssign(ByteReader& in) {
     return m;
 }
 
+/// The fields of a TileResult before its channels.
+void readTileResultHead(ByteReader& in, std::uint32_t& tileId, TileStats& stats) {
+    tileId = in.u32();
+    stats.rays = in.u64();
+    stats.shadowRays = in.u64();
+    stats.vpls = in.u32();
+    stats.causticPhotons = in.u32();
+    stats.setsBuilt = in.u32();
+    stats.renderSeconds = readSeconds(in, "renderSeconds");
+}
+
 TileResult readTileResult(ByteReader& in) {
     TileResult m;
-    m.tileId = in.u32();
-    m.stats.rays = in.u64();
-    m.stats.shadowRays = in.u64();
-    m.stats.vpls = in.u32();
-    m.stats.causticPhotons = in.u32();
-    m.stats.setsBuilt = in.u32();
-    m.stats.renderSeconds = readSeconds(in, "renderSeconds");
+    readTileResultHead(in, m.tileId, m.stats);
     m.channels = readTileChannels(in);
     return m;
 }
@@ -378,14 +383,24 @@ std::vector<std::uint8_t> encodeMessage(const Message& message, std::uint32_t fr
     return bytes;
 }
 
-Message decodeMessage(const Header& header, std::span<const std::uint8_t> payload) {
-    const std::string name = messageTypeName(header.type);
+namespace {
+
+/// The checks of every payload before its fields are read.
+void checkPayload(const Header& header, std::span<const std::uint8_t> payload,
+                  const std::string& name) {
     if (!isKnownType(static_cast<std::uint16_t>(header.type)))
         throw ProtocolError("unknown message " + name);
     if (payload.size() != header.payloadSize)
         throw ProtocolError(name + " payload has " + std::to_string(payload.size()) +
                             " bytes, the header says " + std::to_string(header.payloadSize));
     if (payload.size() > maxPayloadSize(header.type)) throw oversized(payload.size(), header.type);
+}
+
+}  // namespace
+
+Message decodeMessage(const Header& header, std::span<const std::uint8_t> payload) {
+    const std::string name = messageTypeName(header.type);
+    checkPayload(header, payload, name);
     ByteReader in(payload, name);
     Message m;
     switch (header.type) {
@@ -435,6 +450,20 @@ void setHeaderFrameAndEpoch(std::vector<std::uint8_t>& message, std::uint32_t fr
         message[8 + i] = std::uint8_t(frame >> (8 * i));
         message[12 + i] = std::uint8_t(epoch >> (8 * i));
     }
+}
+
+TileResultCodes decodeTileResultCodes(const Header& header, std::span<const std::uint8_t> payload,
+                                      std::vector<std::uint8_t>& raw) {
+    const std::string name = messageTypeName(header.type);
+    checkPayload(header, payload, name);
+    if (header.type != MessageType::TileResult)
+        throw ProtocolError(name + " where a TileResult was expected");
+    ByteReader in(payload, name);
+    TileResultCodes m;
+    readTileResultHead(in, m.tileId, m.stats);
+    m.codes = readTileCodes(in, raw);
+    in.expectEnd();
+    return m;
 }
 
 std::uint32_t peekTileId(std::span<const std::uint8_t> payload) {

@@ -8,6 +8,7 @@
 
 #include "Messages.h"
 #include "ProtocolError.h"
+#include "TileCodes.h"
 
 namespace igi::proto {
 
@@ -48,5 +49,16 @@ std::uint32_t peekTileId(std::span<const std::uint8_t> payload);
 /// Decodes and validates the payload of a (decoded) header. Throws ProtocolError when the
 /// payload is truncated, has trailing bytes, or holds an invalid enum, count, index or range.
 Message decodeMessage(const Header& header, std::span<const std::uint8_t> payload);
+
+/// A TileResult decoded only as far as its codes: what the master copies into its frame
+/// without dequantizing (CodedFrame.h). `codes` points into the caller's `raw`.
+struct TileResultCodes {
+    std::uint32_t tileId = 0;
+    TileStats stats;
+    TileCodes codes;
+};
+/// decodeMessage for a TileResult, stopping at the codes: the same checks, the same errors.
+TileResultCodes decodeTileResultCodes(const Header& header, std::span<const std::uint8_t> payload,
+                                      std::vector<std::uint8_t>& raw);
 
 }  // namespace igi::proto

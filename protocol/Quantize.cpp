@@ -24,6 +24,7 @@ constexpr int kExponentBias = 30;
 // Half of the smallest step: anything below rounds to zero.
 constexpr double kSmallestHalfStep = 0x1p-40;
 static_assert(kSmallestHalfStep == 0.5 / (1ull << (kExponentBias + kMantissaBits)));
+static_assert(kSharedExponentStepShift == kExponentBias + kMantissaBits);
 
 constexpr int kOctCodes = 1 << (2 * kNormalBits);
 constexpr int kDepthCodes = 1 << 16;
@@ -346,6 +347,18 @@ void decodeSharedExponentsIn(std::span<const std::uint32_t> in, float scale,
 
 // The single values go through the plane functions, so that the per-pixel code has one caller
 // and is inlined into the plane loops.
+
+const float* srgbDecodeValues() {
+    return srgbDecodeTable().data();
+}
+
+const glm::vec3* octNormalValues() {
+    return octDecodeTable().data();
+}
+
+const double* logDepthFactors() {
+    return depthDecodeTable().data();
+}
 
 std::uint32_t encodeSharedExponent(glm::vec3 v, float scale) {
     std::uint32_t code = 0;

@@ -40,6 +40,17 @@ constexpr double kDepthStepsPerOctave = 2048.0;
 std::uint16_t encodeLogDepth(float d, float d0);
 float decodeLogDepth(std::uint16_t code, float d0);
 
+/// What the plane decoders below look values up in, for code that dequantizes planes its own
+/// way (CodedFrame): each built once per process, entry for entry the per-value decoders'
+/// results. The linear value of every sRGB code (256); the normal of every octahedral code
+/// u | v << 8 (65536, code 0 the zero vector); exp2(code / 2048) of every log depth code
+/// (65536: the depth is float(d0 * factor), +inf for kDepthInfinite).
+const float* srgbDecodeValues();
+const glm::vec3* octNormalValues();
+const double* logDepthFactors();
+/// A shared-exponent code's component is mantissa * scale * 2^(exponent - this).
+constexpr int kSharedExponentStepShift = 39;
+
 // Whole planes at once, for the tile codec: bit for bit the codes and values of the per-value
 // functions above, many times faster (tables built once per process, no libm calls and no
 // per-pixel set-up in the loops). Codes are held in u32 words packed as on the wire before the

@@ -1,6 +1,7 @@
 // igi-composite-bench: what the master spends per pixel of a frame, stage by stage, on one
-// thread: decoding the tile results (zstd + dequantization), scattering them into the frame,
-// filtering and accumulating, and the mean shown. The frame is synthetic but shaped like the
+// thread: decoding the tile results (zstd), copying their codes into the frame (CodedFrame),
+// and dequantizing, filtering, accumulating and averaging them (FrameCompositor), as the
+// master does. The frame is synthetic but shaped like the
 // default scene's (a room of flat walls and a sphere, 3 x 3 interleaved irradiance with noise,
 // a mirror's unfiltered radiance in one region), cut into the master's tiles and encoded as
 // clients send them. Unlike a replay run (scripts/bench_performance.sh, section 4), nothing
@@ -18,7 +19,9 @@
 #include "ByteReader.h"
 #include "ByteWriter.h"
 #include "ChannelCodec.h"
+#include "CodedFrame.h"
 #include "FrameCompositor.h"
+#include "TileCodes.h"
 #include "render/Tile.h"
 #include "util/ThreadPool.h"
 
@@ -110,21 +113,23 @@ int main(int argc, char** argv) {
     double best[4] = {1e30, 1e30, 1e30, 1e30};
     pool.submit([&] {
         FrameCompositor compositor(width, height, settings, pool);
-        std::vector<FrameBuffer> buffers(2);
+        std::vector<proto::CodedFrame> buffers(2);  // the master keeps two frames or more open
+        std::vector<std::uint8_t> raw;
         for (int r = 0; r < rounds; ++r) {
             double t[4] = {0, 0, 0, 0};
             compositor.resetAccumulation();
             for (int f = 0; f < frames; ++f) {
-                FrameBuffer& frame = buffers[std::size_t(f) % buffers.size()];
-                frame.reuse(width, height);
-                // Tile by tile, as the master does: decoded, then scattered while in cache.
+                proto::CodedFrame& frame = buffers[std::size_t(f) % buffers.size()];
+                frame.reuse(width, height, settings.interleaveX, settings.interleaveY,
+                            settings.tileSize);
+                // Tile by tile, as the master does: decompressed, then copied while in cache.
                 for (std::size_t i = 0; i < tiles.size(); ++i) {
                     auto start = Clock::now();
                     proto::ByteReader in(wire[i], "TileResult");
-                    const TileChannels channels = proto::readTileChannels(in);
+                    const proto::TileCodes codes = proto::readTileCodes(in, raw);
                     t[0] += seconds(start);
                     start = Clock::now();
-                    frame.scatter(tiles[i], settings.interleaveX, settings.interleaveY, channels);
+                    frame.scatter(tiles[i], codes);
                     t[1] += seconds(start);
                 }
                 auto start = Clock::now();
@@ -137,12 +142,12 @@ int main(int argc, char** argv) {
     });
     pool.waitIdle();
     const double pixels = double(width) * height * frames;
-    const char* names[4] = {"decode (zstd + dequantize)", "scatter", "filter + accumulate + mean",
-                            "total"};
+    const char* names[4] = {"decode (zstd)", "scatter (codes)",
+                            "dequantize + filter + accumulate + mean", "total"};
     std::printf("%d x %d, %d frames a round, best of %d rounds, one thread\n", width, height,
                 frames, rounds);
     for (int k = 0; k < 4; ++k)
-        std::printf("%-28s %6.1f ns/pixel\n", names[k], best[k] * 1e9 / pixels);
+        std::printf("%-40s %6.1f ns/pixel\n", names[k], best[k] * 1e9 / pixels);
     std::printf("master ceiling: %.1f M pixels/s (%.1f fps)\n", pixels / best[3] * 1e-6,
                 frames / best[3]);
     return 0;

@@ -31,35 +31,9 @@ int filterWindowStart(int centre, int size, int extent);
 
 /// Filters rows [rowBegin, rowEnd) of `frame` into `out` (width * height entries). At the
 /// image's borders the window is shifted inward rather than cut, so that it still covers every
-/// interleaving cell.
+/// interleaving cell. Eight pixels at a time (RowFilter.h), the same bits as one at a time.
 void discontinuityFilterRows(const FrameBuffer& frame, const DiscontinuityFilterSettings& settings,
                              int rowBegin, int rowEnd, std::vector<glm::vec3>& out);
-
-/// Filters the rows of one frame one after the other, as discontinuityFilterRows does, bit for
-/// bit. Four neighbouring pixels are filtered at once (SSE); for that each frame row is split once
-/// into one array per component (the frame keeps RGB triples together, as tiles arrive), and the
-/// split rows are kept while the next rows' windows read them. One per thread.
-class DiscontinuityRowFilter {
-  public:
-    DiscontinuityRowFilter(const FrameBuffer& frame, const DiscontinuityFilterSettings& settings);
-    /// Writes row y of `out` (width * height entries).
-    void filterRow(int y, std::vector<glm::vec3>& out);
-
-  private:
-    struct PlanarRow {
-        int y = -1;  ///< the frame row it holds
-        std::vector<float> depth, nx, ny, nz, er, eg, eb, gr, gg, gb;
-    };
-    const PlanarRow& row(int y);
-    void splitRow(int y, PlanarRow& row) const;
-    /// Pixels x .. x + 3 of row y, whose windows all start at x - (sizeX - 1) / 2.
-    void filterFour(int x, int y, int y0, int y1, glm::vec3* out);
-
-    const FrameBuffer& frame_;
-    DiscontinuityFilterSettings settings_;
-    bool glossy_;                  ///< whether the frame's glossy plane holds anything
-    std::vector<PlanarRow> rows_;  ///< the window's rows, row y in slot y % sizeY
-};
 
 /// The same rows without the buffer: reflectance * irradiance + glossy + unfiltered, each pixel
 /// on its own (what the progressive filter of Accumulator compares the filtered frame with).

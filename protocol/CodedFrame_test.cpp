@@ -1,0 +1,153 @@
+#include "CodedFrame.h"
+
+#include <algorithm>
+#include <cstring>
+#include <random>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "ByteReader.h"
+#include "ChannelCodec.h"
+#include "ProtocolError.h"
+#include "TestTiles.h"
+#include "render/FrameBuffer.h"
+
+namespace igi::proto {
+namespace {
+
+struct Shape {
+    int width, height, n, m, tileSize;
+};
+
+/// The frame the old path assembles from the same bytes: decoded to floats, then scattered.
+void scatterFloats(FrameBuffer& f, const std::vector<Tile>& tiles,
+                   const std::vector<std::vector<std::uint8_t>>& wire, const Shape& s) {
+    for (std::size_t i = 0; i < tiles.size(); ++i) {
+        ByteReader in(wire[i], "TileResult");
+        f.scatter(tiles[i], s.n, s.m, readTileChannels(in));
+    }
+}
+
+void scatterCodes(CodedFrame& f, const std::vector<Tile>& tiles,
+                  const std::vector<std::vector<std::uint8_t>>& wire, std::mt19937& rng) {
+    // In any order: a plane may come to life after tiles that left it out were copied.
+    std::vector<std::size_t> order(tiles.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), rng);
+    std::vector<std::uint8_t> raw;
+    for (std::size_t i : order) {
+        ByteReader in(wire[i], "TileResult");
+        f.scatter(tiles[i], readTileCodes(in, raw));
+    }
+}
+
+/// Every row of `coded`, in both instruction sets, against `reference` split in cell order.
+void expectSameRows(const CodedFrame& coded, const FrameBuffer& reference, const Shape& s,
+                    const std::string& what) {
+    const CellOrder order(s.width, s.n);
+    FrameRow expected, got;
+    std::vector<lanes::Isa> isas = {lanes::Isa::kBaseline};
+    if (lanes::hasAvx2()) isas.push_back(lanes::Isa::kAvx2);
+    for (int y = 0; y < s.height; ++y) {
+        splitRow(reference, y, order, expected);
+        for (lanes::Isa isa : isas) {
+            coded.decodeRow(y, got, isa);
+            ASSERT_EQ(got.y, y);
+            for (int p = FrameRow::kDepth; p <= FrameRow::kUb; ++p) {
+                const bool glossyPlane = p >= FrameRow::kGr && p <= FrameRow::kGb;
+                if (glossyPlane && !coded.live(kGlossy)) {
+                    // Not read by the filter; the floats hold zeros there.
+                    if (reference.live.has(kGlossy)) {
+                        for (int i = 0; i < s.width; ++i) ASSERT_EQ(expected[p][i], 0.0f);
+                    }
+                    continue;
+                }
+                for (int i = 0; i < s.width; ++i)
+                    ASSERT_EQ(std::memcmp(&got[p][i], &expected[p][i], sizeof(float)), 0)
+                        << what << ": row " << y << " plane " << p << " position " << i << ": "
+                        << got[p][i] << " vs " << expected[p][i] << " (isa " << int(isa) << ")";
+            }
+        }
+    }
+}
+
+// The master copies the tiles' codes and dequantizes rows as it filters them; the floats must
+// be bit for bit those of the decoder that dequantizes every tile to floats (readTileChannels)
+// and scatters them, over shapes that cut tiles at the image's edges, interleavings of every
+// width, planes that come to life in a later frame and go quiet again, and references that
+// leave the fast path.
+TEST(CodedFrame, RowsEqualTheFloatDecoderScatteredBitForBit) {
+    const Shape shapes[] = {{29, 17, 3, 3, 2}, {64, 24, 3, 3, 32}, {13, 9, 1, 1, 4},
+                            {37, 11, 4, 2, 3}, {5, 5, 3, 3, 32},   {100, 7, 2, 3, 5}};
+    std::mt19937 rng(5);
+    for (const Shape& s : shapes) {
+        const auto tiles = makeTiles(s.width, s.height, s.n, s.m, s.tileSize);
+        CodedFrame buffers[2];
+        FrameBuffer reference[2];
+        for (int frame = 0; frame < 4; ++frame) {
+            test::RandomTiles random;
+            if (frame == 1 || frame == 2) random.planes |= kGlossy;
+            if (frame == 3) random.planes &= ~kUnfiltered;
+            const auto wire = random.encoded(tiles, s.n, s.m, rng);
+            CodedFrame& coded = buffers[frame % 2];
+            FrameBuffer& floats = reference[frame % 2];
+            coded.reuse(s.width, s.height, s.n, s.m, s.tileSize);
+            floats.reuse(s.width, s.height);
+            scatterCodes(coded, tiles, wire, rng);
+            scatterFloats(floats, tiles, wire, s);
+            expectSameRows(coded, floats, s,
+                           std::to_string(s.width) + "x" + std::to_string(s.height) + " frame " +
+                               std::to_string(frame));
+        }
+    }
+}
+
+// A result whose pixel count is not its tile's is refused before it writes anything.
+TEST(CodedFrame, RefusesAResultOfAnotherTilesSize) {
+    const Shape s{16, 12, 2, 2, 4};
+    const auto tiles = makeTiles(s.width, s.height, s.n, s.m, s.tileSize);
+    std::mt19937 rng(1);
+    const auto wire = test::RandomTiles{}.encoded(tiles, s.n, s.m, rng);
+    CodedFrame coded;
+    coded.reuse(s.width, s.height, s.n, s.m, s.tileSize);
+    std::vector<std::uint8_t> raw;
+    ByteReader in(wire[0], "TileResult");
+    const TileCodes codes = readTileCodes(in, raw);
+    Tile other = tiles[0];
+    other.width -= 2;  // a tile with fewer pixels
+    ASSERT_NE(other.pixelCount(s.n, s.m), tiles[0].pixelCount(s.n, s.m));
+    EXPECT_THROW(coded.scatter(other, codes), ProtocolError);
+    EXPECT_FALSE(coded.live(kIrradiance));  // nothing came to life
+}
+
+// Tiles of one frame are copied from several threads at once, while planes come to life.
+TEST(CodedFrame, ThreadsScatterOneFrameTogether) {
+    const Shape s{96, 48, 3, 3, 4};
+    const auto tiles = makeTiles(s.width, s.height, s.n, s.m, s.tileSize);
+    for (int round = 0; round < 5; ++round) {
+        std::mt19937 rng{std::uint32_t(round)};
+        test::RandomTiles random;
+        random.planes |= kGlossy;
+        const auto wire = random.encoded(tiles, s.n, s.m, rng);
+        CodedFrame coded;
+        coded.reuse(s.width, s.height, s.n, s.m, s.tileSize);
+        std::vector<std::thread> threads;
+        for (int t = 0; t < 4; ++t)
+            threads.emplace_back([&, t] {
+                std::vector<std::uint8_t> raw;
+                for (std::size_t i = std::size_t(t); i < tiles.size(); i += 4) {
+                    ByteReader in(wire[i], "TileResult");
+                    coded.scatter(tiles[i], readTileCodes(in, raw));
+                }
+            });
+        for (auto& t : threads) t.join();
+        FrameBuffer floats;
+        floats.reuse(s.width, s.height);
+        scatterFloats(floats, tiles, wire, s);
+        expectSameRows(coded, floats, s, "round " + std::to_string(round));
+    }
+}
+
+}  // namespace
+}  // namespace igi::proto
