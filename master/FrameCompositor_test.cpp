@@ -98,7 +98,6 @@ TEST(FrameCompositor, OneSweepEqualsTheSeparatePassesBitForBit) {
         FrameCompositor floats(c.width, c.height, settings, pool);
         Reference reference(c.width, c.height, settings);
         proto::CodedFrame buffers[2];
-        std::vector<std::uint8_t> raw;
         for (int frame = 0; frame < 7; ++frame) {
             if (frame == 4) {  // the view moved
                 coded.resetAccumulation();
@@ -113,7 +112,7 @@ TEST(FrameCompositor, OneSweepEqualsTheSeparatePassesBitForBit) {
             buffer.reuse(c.width, c.height, c.n, c.m, c.tileSize);
             for (std::size_t i = 0; i < tiles.size(); ++i) {
                 proto::ByteReader in(wire[i], "TileResult");
-                buffer.scatter(tiles[i], proto::readTileCodes(in, raw));
+                buffer.scatter(tiles[i], proto::readTileCodes(in));
             }
             const FrameBuffer f = reference.assemble(tiles, wire);
             const auto expected = reference.composite(f);

@@ -59,9 +59,6 @@ constexpr std::uint32_t kFramesInFlight = 4;
 constexpr std::size_t kOpenFrameBufferBudget = std::size_t{1} << 30;
 constexpr std::size_t kFrameBufferBytesPerPixel = proto::CodedFrame::kBytesPerPixel;
 
-// A tile decoder's buffer bigger than this (a huge tile) is given back after the tile.
-constexpr std::size_t kKeepDecodeBufferBytes = std::size_t{4} << 20;
-
 double secondsSince(Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
 }
@@ -377,13 +374,11 @@ void Master::onTileResult(Session& s, const proto::Header& header,
             std::string error;
             proto::TileStats tileStats;
             try {
-                // Decompressed into this thread's buffer and copied into the frame as codes: the
-                // compositor dequantizes them as it filters (CodedFrame.h).
-                thread_local std::vector<std::uint8_t> raw;
-                const auto result = proto::decodeTileResultCodes(header, payload, raw);
+                // Decompressed straight into the frame, still quantized: the compositor
+                // dequantizes the codes as it filters them (CodedFrame.h).
+                const auto result = proto::decodeTileResultCodes(header, payload);
                 record->buffer.scatter(tile, result.codes);  // checks the pixel count first
                 tileStats = result.stats;
-                if (raw.capacity() > kKeepDecodeBufferBytes) std::vector<std::uint8_t>().swap(raw);
             } catch (const std::exception& e) {
                 error = std::string("bad tile result: ") + e.what();
             }

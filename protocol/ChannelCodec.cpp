@@ -157,7 +157,7 @@ class PlaneWriter {
 template <std::uint32_t Bytes>
 std::span<const std::uint32_t> words(Scratch& scratch, const TileCodes& codes, Channel c) {
     const auto w = scratch.wordsFor(codes.count);
-    getShuffled<Bytes>(codes.bytes(c), w);
+    getShuffled<Bytes>(scratch.raw.data() + codes.planeOffset(c), w);
     return w;
 }
 
@@ -236,7 +236,11 @@ void writeTileChannels(ByteWriter& out, const TileChannels& channels) {
 
 TileChannels readTileChannels(ByteReader& in) {
     ThreadScratch scratch;
-    const TileCodes codes = readTileCodes(in, (*scratch).raw);
+    const TileCodes codes = readTileCodes(in);
+    // Bounded by the count, checked before anything is allocated; a frame that declares more
+    // than it holds is refused before it grows the buffer far (zstdDecompressExactInto).
+    if (codes.sent != 0)
+        zstdDecompressExactInto(codes.compressed, codes.rawSize(), in.what(), (*scratch).raw);
     TileChannels channels;
     channels.resize(static_cast<int>(codes.count), codes.planes);
     const std::uint32_t sent = codes.sent;

@@ -452,8 +452,7 @@ void setHeaderFrameAndEpoch(std::vector<std::uint8_t>& message, std::uint32_t fr
     }
 }
 
-TileResultCodes decodeTileResultCodes(const Header& header, std::span<const std::uint8_t> payload,
-                                      std::vector<std::uint8_t>& raw) {
+TileResultCodes decodeTileResultCodes(const Header& header, std::span<const std::uint8_t> payload) {
     const std::string name = messageTypeName(header.type);
     checkPayload(header, payload, name);
     if (header.type != MessageType::TileResult)
@@ -461,7 +460,7 @@ TileResultCodes decodeTileResultCodes(const Header& header, std::span<const std:
     ByteReader in(payload, name);
     TileResultCodes m;
     readTileResultHead(in, m.tileId, m.stats);
-    m.codes = readTileCodes(in, raw);
+    m.codes = readTileCodes(in);
     in.expectEnd();
     return m;
 }

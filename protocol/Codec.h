@@ -50,15 +50,15 @@ std::uint32_t peekTileId(std::span<const std::uint8_t> payload);
 /// payload is truncated, has trailing bytes, or holds an invalid enum, count, index or range.
 Message decodeMessage(const Header& header, std::span<const std::uint8_t> payload);
 
-/// A TileResult decoded only as far as its codes: what the master copies into its frame
-/// without dequantizing (CodedFrame.h). `codes` points into the caller's `raw`.
+/// A TileResult decoded only as far as its compressed codes: what the master decompresses
+/// straight into its frame (CodedFrame.h). `codes` points into the payload.
 struct TileResultCodes {
     std::uint32_t tileId = 0;
     TileStats stats;
     TileCodes codes;
 };
-/// decodeMessage for a TileResult, stopping at the codes: the same checks, the same errors.
-TileResultCodes decodeTileResultCodes(const Header& header, std::span<const std::uint8_t> payload,
-                                      std::vector<std::uint8_t>& raw);
+/// decodeMessage for a TileResult, stopping at the compressed codes: the same checks (the
+/// zstd frame's are made when it is decompressed).
+TileResultCodes decodeTileResultCodes(const Header& header, std::span<const std::uint8_t> payload);
 
 }  // namespace igi::proto

@@ -1,18 +1,26 @@
 #include "CodedFrame.h"
 
 #include <algorithm>
+#include <bit>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
-#include <mutex>
 #include <string>
 
 #include "ChannelCodec.h"
 #include "ProtocolError.h"
 #include "Quantize.h"
 
+#if IGI_HAS_AVX2_TARGET
+#include <immintrin.h>
+#endif
+
 #if defined(__GNUC__)
 #pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+#if defined(__GNUC__) && !defined(__clang__)
+// GCC 12's own _mm256_i32gather_pd starts from _mm256_undefined_pd(), which it then warns of.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 
 namespace igi::proto {
@@ -21,27 +29,37 @@ namespace {
 using namespace lanes;
 using R = FrameRow;
 
-/// Where each plane's bytes start among the frame's byte planes (wire order), how many it
-/// has and the byte of its empty code (zero; depth: kDepthInfinite).
-struct PlaneBytes {
-    Channel channel;
-    int first;
-    int count;
-    std::uint8_t empty;
-};
-constexpr PlaneBytes kPlanes[] = {
-    {kIrradiance, 0, int(kIrradianceBytes), 0},  {kReflectance, 4, int(kReflectanceBytes), 0},
-    {kNormal, 7, int(kNormalBytes), 0},          {kDepth, 9, int(kDepthBytes), 0xFF},
-    {kUnfiltered, 11, int(kUnfilteredBytes), 0}, {kGlossy, 15, int(kGlossyBytes), 0},
-};
-constexpr int kBytePlanes = 19;
-static_assert(kBytePlanes == CodedFrame::kBytesPerPixel);
-// Bytes after each plane that eight-lane loads past a run's end may read.
+// Bytes after each byte plane that eight-lane loads past a run's end may read.
 constexpr std::size_t kPadding = 64;
 
-std::mutex& lifeMutex() {
-    static std::mutex m;
-    return m;
+/// The first of each channel's byte planes (wire order), in Channel bit order.
+constexpr int kFirstBytePlane[6] = {0, 4, 7, 9, 11, 15};
+constexpr int kBytePlanes = 19;
+static_assert(kBytePlanes == CodedFrame::kBytesPerPixel);
+
+int bitIndex(Channel c) {
+    return std::countr_zero(static_cast<std::uint32_t>(c));
+}
+
+/// The bytes of a channel per pixel (ChannelCodec.h).
+constexpr std::uint32_t kChannelBytes[6] = {kIrradianceBytes, kReflectanceBytes, kNormalBytes,
+                                            kDepthBytes,      kUnfilteredBytes,  kGlossyBytes};
+
+/// A tile decompresses into this thread's buffer before its runs are copied out.
+std::vector<std::uint8_t>& threadPlanes() {
+    thread_local std::vector<std::uint8_t> planes;
+    return planes;
+}
+
+/// memcpy for the short runs of a tile's row (a tile is 32 pixels wide by default): whole
+/// 16-byte chunks, the last one overlapping, inlined instead of a library call per run.
+void copyRun(std::uint8_t* out, const std::uint8_t* in, std::size_t n) {
+    if (n < 16) {
+        std::memcpy(out, in, n);
+        return;
+    }
+    for (std::size_t i = 0; i + 16 < n; i += 16) std::memcpy(out + i, in + i, 16);
+    std::memcpy(out + n - 16, in + n - 16, 16);
 }
 
 /// A shared-exponent plane's run of `count` pixels to floats. When the tile's scale keeps every
@@ -100,8 +118,93 @@ IGI_LANES void depthRun(const std::uint8_t* b, std::size_t stride, int count, fl
     }
 }
 
-void fill(FrameRow& row, int plane, int planes, int width, float value) {
-    for (int k = 0; k < planes; ++k) std::fill_n(row[plane + k], width, value);
+#if IGI_HAS_AVX2_TARGET
+// The table planes with AVX2's gathers, eight lanes at a time (writing up to seven entries
+// past the run, as sharedExponentRun): the same table entries and the same double product as
+// the loops above.
+
+IGI_AVX2 inline __m256i bytesAt(const std::uint8_t* p) {
+    return _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
+}
+
+IGI_AVX2 void sharedExponentRunAvx2(const std::uint8_t* b, std::size_t stride, int count,
+                                    float scale, float* r, float* g, float* bl) {
+    if (!(scale >= 0x1p-87f && scale <= FLT_MAX))
+        return sharedExponentRun(b, stride, count, scale, r, g, bl);
+    const __m256 s = _mm256_set1_ps(scale);
+    const __m256i mantissa = _mm256_set1_epi32(511);
+    const __m256i bias = _mm256_set1_epi32(127 - kSharedExponentStepShift);
+    for (int j = 0; j < count; j += kWidth) {
+        const __m256i w = _mm256_or_si256(
+            _mm256_or_si256(bytesAt(b + j), _mm256_slli_epi32(bytesAt(b + stride + j), 8)),
+            _mm256_or_si256(_mm256_slli_epi32(bytesAt(b + 2 * stride + j), 16),
+                            _mm256_slli_epi32(bytesAt(b + 3 * stride + j), 24)));
+        const __m256 step =
+            _mm256_mul_ps(s, _mm256_castsi256_ps(_mm256_slli_epi32(
+                                 _mm256_add_epi32(_mm256_srli_epi32(w, 27), bias), 23)));
+        // Mantissas are 9 bits: the int-to-float conversion is exact, one rounding in the product.
+        const __m256i m0 = _mm256_and_si256(w, mantissa);
+        const __m256i m1 = _mm256_and_si256(_mm256_srli_epi32(w, 9), mantissa);
+        const __m256i m2 = _mm256_and_si256(_mm256_srli_epi32(w, 18), mantissa);
+        _mm256_storeu_ps(r + j, _mm256_mul_ps(_mm256_cvtepi32_ps(m0), step));
+        _mm256_storeu_ps(g + j, _mm256_mul_ps(_mm256_cvtepi32_ps(m1), step));
+        _mm256_storeu_ps(bl + j, _mm256_mul_ps(_mm256_cvtepi32_ps(m2), step));
+    }
+}
+
+IGI_AVX2 void srgbRunAvx2(const std::uint8_t* b, std::size_t stride, int count, const float* table,
+                          float* r, float* g, float* bl) {
+    for (int j = 0; j < count; j += kWidth) {
+        _mm256_storeu_ps(r + j, _mm256_i32gather_ps(table, bytesAt(b + j), 4));
+        _mm256_storeu_ps(g + j, _mm256_i32gather_ps(table, bytesAt(b + stride + j), 4));
+        _mm256_storeu_ps(bl + j, _mm256_i32gather_ps(table, bytesAt(b + 2 * stride + j), 4));
+    }
+}
+
+IGI_AVX2 void normalRunAvx2(const std::uint8_t* b, std::size_t stride, int count,
+                            const glm::vec3* table, float* x, float* y, float* z) {
+    const float* base = &table->x;
+    for (int j = 0; j < count; j += kWidth) {
+        const __m256i code =
+            _mm256_or_si256(bytesAt(b + j), _mm256_slli_epi32(bytesAt(b + stride + j), 8));
+        const __m256i at = _mm256_add_epi32(code, _mm256_slli_epi32(code, 1));  // 3 floats each
+        _mm256_storeu_ps(x + j, _mm256_i32gather_ps(base, at, 4));
+        _mm256_storeu_ps(y + j, _mm256_i32gather_ps(base + 1, at, 4));
+        _mm256_storeu_ps(z + j, _mm256_i32gather_ps(base + 2, at, 4));
+    }
+}
+
+/// The factors of four codes: from the first octave times 2^octave when that is exact
+/// (logDepthOctaveFactors), else from the full table.
+IGI_AVX2 inline __m256d depthFactors(__m128i code, const double* octave, const double* full) {
+    if (!octave) return _mm256_i32gather_pd(full, code, 8);
+    const __m128i fraction = _mm_and_si128(code, _mm_set1_epi32(2047));
+    const __m256i exponent =
+        _mm256_add_epi64(_mm256_cvtepu32_epi64(_mm_srli_epi32(code, 11)), _mm256_set1_epi64x(1023));
+    return _mm256_mul_pd(_mm256_i32gather_pd(octave, fraction, 8),
+                         _mm256_castsi256_pd(_mm256_slli_epi64(exponent, 52)));
+}
+
+IGI_AVX2 void depthRunAvx2(const std::uint8_t* b, std::size_t stride, int count, float d0,
+                           const double* octave, const double* full, float* depth) {
+    const __m256d reference = _mm256_set1_pd(d0);
+    const __m256i infinite = _mm256_set1_epi32(kDepthInfinite);
+    for (int j = 0; j < count; j += kWidth) {
+        const __m256i code =
+            _mm256_or_si256(bytesAt(b + j), _mm256_slli_epi32(bytesAt(b + stride + j), 8));
+        const __m128 low = _mm256_cvtpd_ps(
+            _mm256_mul_pd(reference, depthFactors(_mm256_castsi256_si128(code), octave, full)));
+        const __m128 high = _mm256_cvtpd_ps(_mm256_mul_pd(
+            reference, depthFactors(_mm256_extracti128_si256(code, 1), octave, full)));
+        const __m256 d = _mm256_insertf128_ps(_mm256_castps128_ps256(low), high, 1);
+        const __m256 miss = _mm256_castsi256_ps(_mm256_cmpeq_epi32(code, infinite));
+        _mm256_storeu_ps(depth + j, _mm256_blendv_ps(d, _mm256_set1_ps(INFINITY), miss));
+    }
+}
+#endif
+
+void fill(FrameRow& row, int plane, int planes, int first, int count, float value) {
+    for (int k = 0; k < planes; ++k) std::fill_n(row[plane + k] + first, count, value);
 }
 
 }  // namespace
@@ -110,12 +213,11 @@ CodedFrame& CodedFrame::operator=(CodedFrame&& o) noexcept {
     width_ = o.width_, height_ = o.height_, n_ = o.n_, m_ = o.m_, tileSize_ = o.tileSize_;
     regionsX_ = o.regionsX_, regionsY_ = o.regionsY_;
     order_ = std::move(o.order_);
-    planeStride_ = o.planeStride_;
+    planeBytes_ = o.planeBytes_, planeStride_ = o.planeStride_;
     bytes_ = std::move(o.bytes_);
-    scales_ = std::move(o.scales_);
+    records_ = std::move(o.records_);
     live_ = o.live_.load();
     o.width_ = o.height_ = 0;
-    o.planeStride_ = 0;
     o.live_ = 0;
     return *this;
 }
@@ -128,15 +230,13 @@ void CodedFrame::reuse(int width, int height, int n, int m, int tileSize) {
     regionsX_ = (width + n * tileSize - 1) / (n * tileSize);
     regionsY_ = (height + m * tileSize - 1) / (m * tileSize);
     order_ = CellOrder(width, n);
+    planeBytes_ = (std::size_t(width) + 15) / 16 * 16;
     // Each plane starts three cache lines further off a 4 KB boundary than the one before, so
     // that the same pixel of the 19 planes does not fall into one cache set.
-    const std::size_t pixels = std::size_t(width) * std::size_t(height);
-    planeStride_ = (pixels + kPadding + 4095) / 4096 * 4096 + 192;
-    // Not cleared: a plane is filled with its empty code when it comes to life, and pages of
-    // planes that never do are never touched.
-    bytes_.reset(new std::uint8_t[planeStride_ * kBytePlanes]);
-    for (int b = 0; b < kBytePlanes; ++b) std::memset(bytePlane(b) + pixels, 0, kPadding);
-    scales_.assign(std::size_t(n) * m * regionsX_ * regionsY_, Scales{});
+    planeStride_ = (planeBytes_ * height + kPadding + 4095) / 4096 * 4096 + 192;
+    // Zeroed once, so that loads past a run's end read defined bytes.
+    bytes_.reset(new std::uint8_t[planeStride_ * kBytePlanes]());
+    records_.assign(std::size_t(n) * m * regionsX_ * regionsY_, TileRecord{});
     live_ = 0;
 }
 
@@ -144,67 +244,49 @@ std::size_t CodedFrame::slot(int kx, int ky, int regionX, int regionY) const {
     return ((std::size_t(ky) * n_ + kx) * regionsY_ + regionY) * regionsX_ + regionX;
 }
 
-void CodedFrame::bringToLife(Channel c) {
-    if (live(c)) return;
-    std::lock_guard lock(lifeMutex());
-    if (live(c)) return;
-    const std::size_t pixels = std::size_t(width_) * std::size_t(height_);
-    for (const PlaneBytes& p : kPlanes)
-        if (p.channel == c)
-            for (int b = 0; b < p.count; ++b) std::memset(bytePlane(p.first + b), p.empty, pixels);
-    // Released after the fill: a thread that sees the bit writes its empties after it.
-    live_.fetch_or(c, std::memory_order_release);
-}
-
-void CodedFrame::scatter(const Tile& tile, const TileCodes& codes) {
-    const int columns = tile.columns(n_), rows = tile.rows(m_);
+void CodedFrame::scatter(const Tile& tile, const TileCodes& codes, std::string_view what) {
     if (codes.count != std::uint32_t(tile.pixelCount(n_, m_)))
-        throw ProtocolError("a result with " + std::to_string(codes.count) +
+        throw ProtocolError(std::string(what) + ": a result with " + std::to_string(codes.count) +
                             " pixels for a tile of " + std::to_string(tile.pixelCount(n_, m_)));
-    if (columns == 0 || rows == 0) return;
+    std::vector<std::uint8_t>& planes = threadPlanes();
+    planes.resize(codes.rawSize());
+    decompressPlanes(codes, planes, what);
+    const int columns = tile.columns(n_), rows = tile.rows(m_);
     const std::size_t run = std::size_t(order_.start(tile.kx) + tile.x0 / n_);
-    const std::size_t count = codes.count;
-    for (const PlaneBytes& p : kPlanes) {
-        const std::uint8_t* source = codes.bytes(p.channel);
-        if (source) {
-            bringToLife(p.channel);
-        } else if (!live(p.channel)) {
-            continue;  // empty in the whole frame already
-        }
-        for (int b = 0; b < p.count; ++b) {
-            std::uint8_t* plane = bytePlane(p.first + b);
-            for (int r = 0; r < rows; ++r) {
-                const int y = tile.y0 + tile.ky + r * m_;
-                std::uint8_t* out = plane + std::size_t(y) * std::size_t(width_) + run;
-                if (source)
-                    std::memcpy(out, source + b * count + std::size_t(r) * columns, columns);
-                else
-                    std::memset(out, p.empty, std::size_t(columns));
-            }
+    // Row by row of the tile, a run per byte plane. Planes the tile did not send are not
+    // written: its record says so, and decodeRow makes them empty.
+    for (int r = 0; r < rows; ++r) {
+        const int y = tile.y0 + tile.ky + r * m_;
+        for (Channel c : {kIrradiance, kReflectance, kNormal, kDepth, kUnfiltered, kGlossy}) {
+            if (!(codes.sent & c)) continue;
+            const int i = bitIndex(c);
+            const std::uint8_t* in =
+                planes.data() + codes.planeOffset(c) + std::size_t(r) * columns;
+            for (std::uint32_t b = 0; b < kChannelBytes[i]; ++b)
+                copyRun(bytes(y, kFirstBytePlane[i] + int(b)) + run, in + b * codes.count,
+                        std::size_t(columns));
         }
     }
-    Scales& s =
-        scales_[slot(tile.kx, tile.ky, tile.x0 / (n_ * tileSize_), tile.y0 / (m_ * tileSize_))];
-    s.irradiance = codes.sent & kIrradiance ? codes.irradianceScale : 1.0f;
-    s.depth = codes.sent & kDepth ? codes.depthMin : 1.0f;
-    s.unfiltered = codes.sent & kUnfiltered ? codes.unfilteredScale : 1.0f;
-    s.glossy = codes.sent & kGlossy ? codes.glossyScale : 1.0f;
+    if (planes.capacity() > (std::size_t{1} << 20)) std::vector<std::uint8_t>().swap(planes);
+    TileRecord& t =
+        records_[slot(tile.kx, tile.ky, tile.x0 / (n_ * tileSize_), tile.y0 / (m_ * tileSize_))];
+    t.sent = codes.sent;
+    t.irradiance = codes.sent & kIrradiance ? codes.irradianceScale : 1.0f;
+    t.depth = codes.sent & kDepth ? codes.depthMin : 1.0f;
+    t.unfiltered = codes.sent & kUnfiltered ? codes.unfilteredScale : 1.0f;
+    t.glossy = codes.sent & kGlossy ? codes.glossyScale : 1.0f;
+    live_.fetch_or(codes.sent, std::memory_order_relaxed);
 }
 
+template <bool Avx2>
 void CodedFrame::decodeRowBody(int y, FrameRow& row) const {
     const int ky = y % m_, regionY = y / (m_ * tileSize_);
-    const std::size_t stride = planeStride_, base = std::size_t(y) * std::size_t(width_);
-    const bool irradiance = live(kIrradiance), reflectance = live(kReflectance),
-               normal = live(kNormal), depth = live(kDepth), unfiltered = live(kUnfiltered),
-               glossy = live(kGlossy);
-    if (!irradiance) fill(row, R::kEr, 3, width_, 0.0f);
-    if (!reflectance) fill(row, R::kRr, 3, width_, 0.0f);
-    if (!normal) fill(row, R::kNx, 3, width_, 0.0f);
-    if (!depth) fill(row, R::kDepth, 1, width_, INFINITY);
-    if (!unfiltered) fill(row, R::kUr, 3, width_, 0.0f);
+    const bool glossy = live(kGlossy);
     const float* srgb = srgbDecodeValues();
     const glm::vec3* normals = octNormalValues();
     const double* factors = logDepthFactors();
+    [[maybe_unused]] const double* octave = logDepthOctaveFactors();
+    const std::size_t stride = planeStride_;  // between a channel's bytes 0, 1, ...
     // Run by run (one tile's row each), in increasing position: a run may write past its end,
     // which the next run then overwrites.
     for (int kx = 0; kx < n_; ++kx) {
@@ -212,36 +294,60 @@ void CodedFrame::decodeRowBody(int y, FrameRow& row) const {
             const int first = order_.start(kx) + regionX * tileSize_;
             const int count = std::min(tileSize_, order_.count(kx) - regionX * tileSize_);
             if (count <= 0) break;
-            const Scales& s = scales_[slot(kx, ky, regionX, regionY)];
-            const std::uint8_t* at = bytes_.get() + base + std::size_t(first);
+            const TileRecord& t = records_[slot(kx, ky, regionX, regionY)];
+            auto at = [&](Channel c) { return bytes(y, kFirstBytePlane[bitIndex(c)]) + first; };
             auto plane = [&](int p) { return row[p] + first; };
-            if (irradiance)
-                sharedExponentRun(at, stride, count, s.irradiance, plane(R::kEr), plane(R::kEg),
-                                  plane(R::kEb));
+            // The shared-exponent planes: irradiance, unfiltered and glossy.
+            auto sharedExponents = [&](Channel c, float scale, int p) {
+                if (!(t.sent & c)) return fill(row, p, 3, first, count, 0.0f);
+#if IGI_HAS_AVX2_TARGET
+                if constexpr (Avx2)
+                    return sharedExponentRunAvx2(at(c), stride, count, scale, plane(p),
+                                                 plane(p + 1), plane(p + 2));
+#endif
+                sharedExponentRun(at(c), stride, count, scale, plane(p), plane(p + 1),
+                                  plane(p + 2));
+            };
+            sharedExponents(kIrradiance, t.irradiance, R::kEr);
+            sharedExponents(kUnfiltered, t.unfiltered, R::kUr);
+            if (glossy) sharedExponents(kGlossy, t.glossy, R::kGr);
+            if (!(t.sent & kReflectance)) fill(row, R::kRr, 3, first, count, 0.0f);
+            if (!(t.sent & kNormal)) fill(row, R::kNx, 3, first, count, 0.0f);
+            if (!(t.sent & kDepth)) fill(row, R::kDepth, 1, first, count, INFINITY);
+            const bool reflectance = t.sent & kReflectance, normal = t.sent & kNormal,
+                       depth = t.sent & kDepth;
+#if IGI_HAS_AVX2_TARGET
+            if constexpr (Avx2) {
+                if (reflectance)
+                    srgbRunAvx2(at(kReflectance), stride, count, srgb, plane(R::kRr), plane(R::kRg),
+                                plane(R::kRb));
+                if (normal)
+                    normalRunAvx2(at(kNormal), stride, count, normals, plane(R::kNx), plane(R::kNy),
+                                  plane(R::kNz));
+                if (depth)
+                    depthRunAvx2(at(kDepth), stride, count, t.depth, octave, factors,
+                                 plane(R::kDepth));
+                continue;
+            }
+#endif
             if (reflectance)
-                srgbRun(at + 4 * stride, stride, count, srgb, plane(R::kRr), plane(R::kRg),
+                srgbRun(at(kReflectance), stride, count, srgb, plane(R::kRr), plane(R::kRg),
                         plane(R::kRb));
             if (normal)
-                normalRun(at + 7 * stride, stride, count, normals, plane(R::kNx), plane(R::kNy),
+                normalRun(at(kNormal), stride, count, normals, plane(R::kNx), plane(R::kNy),
                           plane(R::kNz));
-            if (depth) depthRun(at + 9 * stride, stride, count, s.depth, factors, plane(R::kDepth));
-            if (unfiltered)
-                sharedExponentRun(at + 11 * stride, stride, count, s.unfiltered, plane(R::kUr),
-                                  plane(R::kUg), plane(R::kUb));
-            if (glossy)
-                sharedExponentRun(at + 15 * stride, stride, count, s.glossy, plane(R::kGr),
-                                  plane(R::kGg), plane(R::kGb));
+            if (depth) depthRun(at(kDepth), stride, count, t.depth, factors, plane(R::kDepth));
         }
     }
 }
 
 void CodedFrame::decodeRowBaseline(int y, FrameRow& row) const {
-    decodeRowBody(y, row);
+    decodeRowBody<false>(y, row);
 }
 
 #if IGI_HAS_AVX2_TARGET
 IGI_AVX2 void CodedFrame::decodeRowAvx2(int y, FrameRow& row) const {
-    decodeRowBody(y, row);
+    decodeRowBody<true>(y, row);
 }
 #endif
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iostream>
+#include <optional>
 #include <random>
 #include <thread>
 
@@ -9,7 +11,10 @@
 
 #include "ByteReader.h"
 #include "ChannelCodec.h"
+#include "Codec.h"
+#include "Compression.h"
 #include "ProtocolError.h"
+#include "TestMessages.h"
 #include "TestTiles.h"
 #include "render/FrameBuffer.h"
 
@@ -35,10 +40,9 @@ void scatterCodes(CodedFrame& f, const std::vector<Tile>& tiles,
     std::vector<std::size_t> order(tiles.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::shuffle(order.begin(), order.end(), rng);
-    std::vector<std::uint8_t> raw;
     for (std::size_t i : order) {
         ByteReader in(wire[i], "TileResult");
-        f.scatter(tiles[i], readTileCodes(in, raw));
+        f.scatter(tiles[i], readTileCodes(in));
     }
 }
 
@@ -111,9 +115,8 @@ TEST(CodedFrame, RefusesAResultOfAnotherTilesSize) {
     const auto wire = test::RandomTiles{}.encoded(tiles, s.n, s.m, rng);
     CodedFrame coded;
     coded.reuse(s.width, s.height, s.n, s.m, s.tileSize);
-    std::vector<std::uint8_t> raw;
     ByteReader in(wire[0], "TileResult");
-    const TileCodes codes = readTileCodes(in, raw);
+    const TileCodes codes = readTileCodes(in);
     Tile other = tiles[0];
     other.width -= 2;  // a tile with fewer pixels
     ASSERT_NE(other.pixelCount(s.n, s.m), tiles[0].pixelCount(s.n, s.m));
@@ -121,7 +124,7 @@ TEST(CodedFrame, RefusesAResultOfAnotherTilesSize) {
     EXPECT_FALSE(coded.live(kIrradiance));  // nothing came to life
 }
 
-// Tiles of one frame are copied from several threads at once, while planes come to life.
+// Tiles of one frame are copied from several threads at once.
 TEST(CodedFrame, ThreadsScatterOneFrameTogether) {
     const Shape s{96, 48, 3, 3, 4};
     const auto tiles = makeTiles(s.width, s.height, s.n, s.m, s.tileSize);
@@ -135,10 +138,9 @@ TEST(CodedFrame, ThreadsScatterOneFrameTogether) {
         std::vector<std::thread> threads;
         for (int t = 0; t < 4; ++t)
             threads.emplace_back([&, t] {
-                std::vector<std::uint8_t> raw;
                 for (std::size_t i = std::size_t(t); i < tiles.size(); i += 4) {
                     ByteReader in(wire[i], "TileResult");
-                    coded.scatter(tiles[i], readTileCodes(in, raw));
+                    coded.scatter(tiles[i], readTileCodes(in));
                 }
             });
         for (auto& t : threads) t.join();
@@ -147,6 +149,80 @@ TEST(CodedFrame, ThreadsScatterOneFrameTogether) {
         scatterFloats(floats, tiles, wire, s);
         expectSameRows(coded, floats, s, "round " + std::to_string(round));
     }
+}
+
+std::vector<std::uint8_t> mutate(std::vector<std::uint8_t> p, std::mt19937& rng) {
+    if (p.empty()) return p;
+    switch (rng() % 3) {
+        case 0:  // flip a few bytes
+            for (int i = 0, flips = 1 + int(rng() % 4); i < flips; ++i)
+                p[rng() % p.size()] = std::uint8_t(rng());
+            break;
+        case 1:  // cut
+            p.resize(rng() % p.size());
+            break;
+        default:  // insert
+            p.insert(p.begin() + long(rng() % p.size()), 1 + rng() % 8, std::uint8_t(rng()));
+    }
+    return p;
+}
+
+// The master's path (decodeTileResultCodes, then CodedFrame::scatter) must refuse exactly the
+// tile results that decodeMessage refuses, with a ProtocolError and nothing else, and what it
+// accepts must decode to the floats decodeMessage gives: payloads mutated before and after
+// compression, in the prefix, the planes and the zstd frame.
+TEST(CodedFrame, RefusesWhatTheMessageDecoderRefusesAndReadsTheRestTheSame) {
+    const TileResult sample = test::sampleTileResult(64);
+    const auto payload = encodePayload(sample);
+    const std::size_t blobAt = 36 + 12 + 16;  // id and stats; count, masks; four references
+    const std::vector<std::uint8_t> prefix(payload.begin(), payload.begin() + blobAt);
+    const auto raw = zstdDecompressExact(std::span(payload).subspan(blobAt + 4),
+                                         64 * bytesPerPixel(kAllChannels), "test");
+    const Shape s{8, 8, 1, 1, 8};  // one tile of 64 pixels
+    const Tile tile = makeTiles(s.width, s.height, s.n, s.m, s.tileSize)[0];
+    ASSERT_EQ(tile.pixelCount(s.n, s.m), 64);
+    std::mt19937 rng(17);
+    int accepted = 0;
+    for (int i = 0; i < 3000; ++i) {
+        std::vector<std::uint8_t> p = rng() % 2 ? mutate(prefix, rng) : prefix;
+        {
+            ByteWriter out(p);
+            out.blob(zstdCompress(rng() % 2 ? mutate(raw, rng) : raw, 1));
+        }
+        if (rng() % 4 == 0) p = mutate(p, rng);  // the zstd frame or its length too
+        Header h;
+        h.type = MessageType::TileResult;
+        h.payloadSize = std::uint32_t(p.size());
+        std::optional<TileResult> expected;
+        try {
+            expected = std::get<TileResult>(decodeMessage(h, p));
+        } catch (const ProtocolError&) {
+        }
+        CodedFrame coded;
+        coded.reuse(s.width, s.height, s.n, s.m, s.tileSize);
+        bool refused = false;
+        try {
+            coded.scatter(tile, decodeTileResultCodes(h, p).codes);
+        } catch (const ProtocolError&) {
+            refused = true;
+        }
+        if (!expected) {
+            ASSERT_TRUE(refused) << "mutation " << i << " accepted by the codes' path only";
+            continue;
+        }
+        if (expected->channels.count != 64) {
+            ASSERT_TRUE(refused) << "mutation " << i << ": a tile of another size accepted";
+            continue;
+        }
+        ASSERT_FALSE(refused) << "mutation " << i << " refused by the codes' path only";
+        ++accepted;
+        FrameBuffer floats;
+        floats.reuse(s.width, s.height);
+        floats.scatter(tile, s.n, s.m, expected->channels);
+        expectSameRows(coded, floats, s, "mutation " + std::to_string(i));
+    }
+    std::cout << "hostile tiles: " << accepted << " of 3000 accepted\n";
+    EXPECT_GT(accepted, 100);
 }
 
 }  // namespace

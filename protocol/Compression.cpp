@@ -64,10 +64,10 @@ void checkFrame(std::span<const std::uint8_t> frame, std::size_t expectedSize,
                        std::to_string(expectedSize));
 }
 
-/// Small content: `out` is sized up front and filled in one call.
-void decompressAtOnce(std::span<const std::uint8_t> frame, std::size_t expectedSize,
-                      std::string_view what, std::vector<std::uint8_t>& out) {
-    out.resize(expectedSize);
+/// Small content, or memory set aside for it: filled in one call.
+void decompressAtOnce(std::span<const std::uint8_t> frame, std::span<std::uint8_t> out,
+                      std::string_view what) {
+    const std::size_t expectedSize = out.size();
     const std::size_t n =
         ZSTD_decompressDCtx(&threadDctx(), out.data(), out.size(), frame.data(), frame.size());
     if (ZSTD_isError(n)) {
@@ -152,10 +152,18 @@ std::vector<std::uint8_t> zstdDecompressExact(std::span<const std::uint8_t> fram
 void zstdDecompressExactInto(std::span<const std::uint8_t> frame, std::size_t expectedSize,
                              std::string_view what, std::vector<std::uint8_t>& out) {
     checkFrame(frame, expectedSize, what);
-    if (expectedSize <= kReuseContextUpTo)
-        decompressAtOnce(frame, expectedSize, what, out);
-    else
+    if (expectedSize <= kReuseContextUpTo) {
+        out.resize(expectedSize);
+        decompressAtOnce(frame, out, what);
+    } else {
         decompressInSteps(frame, expectedSize, what, out);
+    }
+}
+
+void zstdDecompressExactTo(std::span<const std::uint8_t> frame, std::span<std::uint8_t> out,
+                           std::string_view what) {
+    checkFrame(frame, out.size(), what);
+    decompressAtOnce(frame, out, what);
 }
 
 }  // namespace igi::proto

@@ -27,5 +27,9 @@ std::vector<std::uint8_t> zstdDecompressExact(std::span<const std::uint8_t> fram
 /// first 1 MiB step would be; larger content grows `out` step by step as above.
 void zstdDecompressExactInto(std::span<const std::uint8_t> frame, std::size_t expectedSize,
                              std::string_view what, std::vector<std::uint8_t>& out);
+/// The same into `out`, memory the caller has set aside for exactly out.size() bytes of
+/// content (a tile's place in the master's frame), in one call with a context kept per thread.
+void zstdDecompressExactTo(std::span<const std::uint8_t> frame, std::span<std::uint8_t> out,
+                           std::string_view what);
 
 }  // namespace igi::proto

@@ -348,6 +348,18 @@ void decodeSharedExponentsIn(std::span<const std::uint32_t> in, float scale,
 // The single values go through the plane functions, so that the per-pixel code has one caller
 // and is inlined into the plane loops.
 
+const double* logDepthOctaveFactors() {
+    static const double* octave = [] {
+        const double* full = depthDecodeTable().data();
+        constexpr int kPerOctave = static_cast<int>(kDepthStepsPerOctave);
+        for (int c = 0; c < kDepthCodes; ++c)
+            if (full[c] != full[c % kPerOctave] * pow2(c / kPerOctave))
+                return (const double*)nullptr;
+        return full;  // its first octave
+    }();
+    return octave;
+}
+
 const float* srgbDecodeValues() {
     return srgbDecodeTable().data();
 }

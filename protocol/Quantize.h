@@ -48,6 +48,10 @@ float decodeLogDepth(std::uint16_t code, float d0);
 const float* srgbDecodeValues();
 const glm::vec3* octNormalValues();
 const double* logDepthFactors();
+/// The first 2048 log depth factors, exp2(f / 2048), when every factor is exactly
+/// factor[c % 2048] * 2^(c / 2048) (checked once against the full table: exp2 of this
+/// process's libm scales so); null when not. A 16 KB table that stays in the cache.
+const double* logDepthOctaveFactors();
 /// A shared-exponent code's component is mantissa * scale * 2^(exponent - this).
 constexpr int kSharedExponentStepShift = 39;
 

@@ -26,13 +26,16 @@ float readReference(ByteReader& in, const char* name) {
 
 }  // namespace
 
-const std::uint8_t* TileCodes::bytes(Channel c) const {
-    if (!(sent & c)) return nullptr;
-    // The planes before c, in bit order, each bytesPerPixel * count bytes.
-    return raw.data() + std::size_t{bytesPerPixel(sent & (c - 1))} * count;
+std::size_t TileCodes::rawSize() const {
+    return std::size_t{bytesPerPixel(sent)} * count;
 }
 
-TileCodes readTileCodes(ByteReader& in, std::vector<std::uint8_t>& raw) {
+std::size_t TileCodes::planeOffset(Channel c) const {
+    // The sent planes before c, in bit order.
+    return std::size_t{bytesPerPixel(sent & (c - 1))} * count;
+}
+
+TileCodes readTileCodes(ByteReader& in) {
     TileCodes t;
     t.count = in.u32();
     t.planes = in.u32();
@@ -50,16 +53,13 @@ TileCodes readTileCodes(ByteReader& in, std::vector<std::uint8_t>& raw) {
     if (t.sent & kDepth) t.depthMin = readReference(in, "depth");
     if (t.sent & kUnfiltered) t.unfilteredScale = readReference(in, "unfiltered");
     if (t.sent & kGlossy) t.glossyScale = readReference(in, "glossy");
-
-    raw.clear();
-    if (t.sent != 0) {
-        // The frame must declare exactly this size, which the count bounds: checked before the
-        // planes are allocated.
-        const std::size_t rawSize = std::size_t{bytesPerPixel(t.sent)} * t.count;
-        zstdDecompressExactInto(in.blob(), rawSize, in.what(), raw);
-    }
-    t.raw = raw;
+    if (t.sent != 0) t.compressed = in.blob();
     return t;
+}
+
+void decompressPlanes(const TileCodes& codes, std::span<std::uint8_t> out, std::string_view what) {
+    // The frame must declare exactly this size, which the count bounds.
+    if (codes.sent != 0) zstdDecompressExactTo(codes.compressed, out.first(codes.rawSize()), what);
 }
 
 }  // namespace igi::proto

@@ -1,7 +1,7 @@
 // igi-composite-bench: what the master spends per pixel of a frame, stage by stage, on one
-// thread: decoding the tile results (zstd), copying their codes into the frame (CodedFrame),
-// and dequantizing, filtering, accumulating and averaging them (FrameCompositor), as the
-// master does. The frame is synthetic but shaped like the
+// thread: reading the tile results, decompressing their codes into the frame (zstd,
+// CodedFrame), and dequantizing, filtering, accumulating and averaging them
+// (FrameCompositor), as the master does. The frame is synthetic but shaped like the
 // default scene's (a room of flat walls and a sphere, 3 x 3 interleaved irradiance with noise,
 // a mirror's unfiltered radiance in one region), cut into the master's tiles and encoded as
 // clients send them. Unlike a replay run (scripts/bench_performance.sh, section 4), nothing
@@ -114,7 +114,6 @@ int main(int argc, char** argv) {
     pool.submit([&] {
         FrameCompositor compositor(width, height, settings, pool);
         std::vector<proto::CodedFrame> buffers(2);  // the master keeps two frames or more open
-        std::vector<std::uint8_t> raw;
         for (int r = 0; r < rounds; ++r) {
             double t[4] = {0, 0, 0, 0};
             compositor.resetAccumulation();
@@ -122,11 +121,11 @@ int main(int argc, char** argv) {
                 proto::CodedFrame& frame = buffers[std::size_t(f) % buffers.size()];
                 frame.reuse(width, height, settings.interleaveX, settings.interleaveY,
                             settings.tileSize);
-                // Tile by tile, as the master does: decompressed, then copied while in cache.
+                // Tile by tile, as the master does: read, then decompressed into the frame.
                 for (std::size_t i = 0; i < tiles.size(); ++i) {
                     auto start = Clock::now();
                     proto::ByteReader in(wire[i], "TileResult");
-                    const proto::TileCodes codes = proto::readTileCodes(in, raw);
+                    const proto::TileCodes codes = proto::readTileCodes(in);
                     t[0] += seconds(start);
                     start = Clock::now();
                     frame.scatter(tiles[i], codes);
@@ -142,7 +141,7 @@ int main(int argc, char** argv) {
     });
     pool.waitIdle();
     const double pixels = double(width) * height * frames;
-    const char* names[4] = {"decode (zstd)", "scatter (codes)",
+    const char* names[4] = {"read (headers)", "decompress into the frame (zstd)",
                             "dequantize + filter + accumulate + mean", "total"};
     std::printf("%d x %d, %d frames a round, best of %d rounds, one thread\n", width, height,
                 frames, rounds);

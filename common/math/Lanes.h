@@ -97,12 +97,32 @@ IGI_LANES I8 finite(F8 a) {
     return ((I8)a & splat(0x7F800000)) != splat(0x7F800000);
 }
 
-/// Lanes 0-3 and 4-7 of a, as doubles (exact), and back (rounded as static_cast<float>).
-IGI_LANES D4 lowD4(F8 a) {
-    return __builtin_convertvector(__builtin_shufflevector(a, a, 0, 1, 2, 3), D4);
+#if IGI_HAS_AVX2_TARGET && !defined(__clang__)
+// GCC 12 widens four floats to doubles two at a time through the stack; AVX has one
+// instruction for it. Not inlined by force (a target mismatch would be an error where the
+// kernel is instantiated for the baseline), but inlined where the AVX2 kernels call it.
+IGI_AVX2 inline D4 widenAvx(F4 a) {
+    return (D4)__builtin_ia32_cvtps2pd256(a);
 }
+#endif
+
+/// Lanes 0-3 and 4-7 of a, as doubles (exact), and back (rounded as static_cast<float>).
+/// `Avx2`: the caller is AVX2 code (IGI_AVX2).
+template <bool Avx2 = false>
+IGI_LANES D4 lowD4(F8 a) {
+    const F4 low = __builtin_shufflevector(a, a, 0, 1, 2, 3);
+#if IGI_HAS_AVX2_TARGET && !defined(__clang__)
+    if constexpr (Avx2) return widenAvx(low);
+#endif
+    return __builtin_convertvector(low, D4);
+}
+template <bool Avx2 = false>
 IGI_LANES D4 highD4(F8 a) {
-    return __builtin_convertvector(__builtin_shufflevector(a, a, 4, 5, 6, 7), D4);
+    const F4 high = __builtin_shufflevector(a, a, 4, 5, 6, 7);
+#if IGI_HAS_AVX2_TARGET && !defined(__clang__)
+    if constexpr (Avx2) return widenAvx(high);
+#endif
+    return __builtin_convertvector(high, D4);
 }
 IGI_LANES F4 toF4(D4 a) {
     return __builtin_convertvector(a, F4);

@@ -52,6 +52,7 @@ struct Layout {
 };
 
 /// Accumulator::addRows for one row; `framesBefore` frames are in.
+template <bool Avx2>
 IGI_LANES void addRowBody(const Layout& l, std::vector<double>& sums, int y, const ShadedRow& row,
                           int framesBefore, double* variance) {
     // The variance after this frame, of framesBefore + 1 frames (0 while there is one).
@@ -63,18 +64,18 @@ IGI_LANES void addRowBody(const Layout& l, std::vector<double>& sums, int y, con
         const F8 f[3] = {load(row[S::kFr] + i), load(row[S::kFg] + i), load(row[S::kFb] + i)};
         for (int c = 0; c < 3; ++c) {
             double* field = s + (kFilteredSum + c) * kWidth;
-            store(field, loadD4(field) + lowD4(f[c]));
-            store(field + 4, loadD4(field + 4) + highD4(f[c]));
+            store(field, loadD4(field) + lowD4<Avx2>(f[c]));
+            store(field + 4, loadD4(field + 4) + highD4<Avx2>(f[c]));
         }
         if (!l.withdraw) continue;
         const F8 u[3] = {load(row[S::kUr] + i), load(row[S::kUg] + i), load(row[S::kUb] + i)};
         for (int c = 0; c < 3; ++c) {
             double* field = s + (kUnfilteredSum + c) * kWidth;
-            store(field, loadD4(field) + lowD4(u[c]));
-            store(field + 4, loadD4(field + 4) + highD4(u[c]));
+            store(field, loadD4(field) + lowD4<Avx2>(u[c]));
+            store(field + 4, loadD4(field + 4) + highD4<Avx2>(u[c]));
         }
         const F8 lf = luminance(f[0], f[1], f[2]), lu = luminance(u[0], u[1], u[2]);
-        const D4 d[2] = {lowD4(lf) - lowD4(lu), highD4(lf) - highD4(lu)};
+        const D4 d[2] = {lowD4<Avx2>(lf) - lowD4<Avx2>(lu), highD4<Avx2>(lf) - highD4<Avx2>(lu)};
         double* d2 = s + kDifference2 * kWidth;
         for (int h = 0; h < 2; ++h) {
             store(d2 + 4 * h, loadD4(d2 + 4 * h) + d[h] * d[h]);
@@ -221,7 +222,7 @@ IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y
 
 void addRowBaseline(const Layout& l, std::vector<double>& sums, int y, const ShadedRow& row,
                     int framesBefore, double* variance) {
-    addRowBody(l, sums, y, row, framesBefore, variance);
+    addRowBody<false>(l, sums, y, row, framesBefore, variance);
 }
 void varianceRowBaseline(const Layout& l, const std::vector<double>& sums, int y, int frames,
                          double* variance) {
@@ -235,7 +236,7 @@ void meanRowBaseline(const Mean& m, const std::vector<double>& sums, int y, int 
 #if IGI_HAS_AVX2_TARGET
 IGI_AVX2 void addRowAvx2(const Layout& l, std::vector<double>& sums, int y, const ShadedRow& row,
                          int framesBefore, double* variance) {
-    addRowBody(l, sums, y, row, framesBefore, variance);
+    addRowBody<true>(l, sums, y, row, framesBefore, variance);
 }
 IGI_AVX2 void varianceRowAvx2(const Layout& l, const std::vector<double>& sums, int y, int frames,
                               double* variance) {

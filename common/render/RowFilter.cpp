@@ -152,16 +152,19 @@ IGI_LANES void filterRowWith(const Setup& u, ShadedRow& out) {
         const int cFirst = std::max(0, (firstUnshifted - kx + n - 1) / n);
         const int cLast =
             lastUnshifted >= kx && sizeX <= kMaxLanesWindow ? (lastUnshifted - kx) / n : -1;
+        // Shifted windows one pixel at a time; unshifted ones eight at a time, the last eight
+        // overlapping the ones before rather than leaving pixels over (a lane's result does not
+        // depend on its neighbours', so the pixels written twice get the same bits twice).
         const int columns = o.count(kx);
-        for (int c = 0; c < columns;) {
-            if (c >= cFirst && c + kWidth - 1 <= cLast) {
-                filterLanes<Glossy, Unfiltered>(u, offsets, o.start(kx) + c, out);
-                c += kWidth;
-            } else {
-                filterPixel(u, kx + c * n, out);
-                ++c;
-            }
+        const bool lanes = cLast - cFirst + 1 >= kWidth;
+        for (int c = 0; c < (lanes ? cFirst : columns); ++c) filterPixel(u, kx + c * n, out);
+        if (!lanes) continue;
+        for (int c = cFirst;; c += kWidth) {
+            const int first = std::min(c, cLast - kWidth + 1);
+            filterLanes<Glossy, Unfiltered>(u, offsets, o.start(kx) + first, out);
+            if (first + kWidth > cLast) break;
         }
+        for (int c = cLast + 1; c < columns; ++c) filterPixel(u, kx + c * n, out);
     }
 }
 
