@@ -62,32 +62,41 @@ void copyRun(std::uint8_t* out, const std::uint8_t* in, std::size_t n) {
     std::memcpy(out + n - 16, in + n - 16, 16);
 }
 
-/// A shared-exponent plane's run of `count` pixels to floats. When the tile's scale keeps every
-/// step scale * 2^(e - 39) a normal float, the float product of mantissa and step rounds the
-/// same exact product once, as the decoder's double arithmetic does (Quantize.cpp); eight
-/// lanes at a time, writing up to seven entries past the run. Otherwise the per-value decoder.
-IGI_LANES void sharedExponentRun(const std::uint8_t* b, std::size_t stride, int count, float scale,
-                                 float* r, float* g, float* bl) {
-    if (scale >= 0x1p-87f && scale <= FLT_MAX) {
-        const F8 s = splat(scale);
-        const U8 mantissa = U8{} + 511u;
-        for (int j = 0; j < count; j += kWidth) {
-            const U8 w = loadBytes(b + j) | loadBytes(b + stride + j) << 8 |
-                         loadBytes(b + 2 * stride + j) << 16 | loadBytes(b + 3 * stride + j) << 24;
-            // 2^(e - 39), e = w >> 27, as the bits of a float: biased exponent e - 39 + 127.
-            const F8 step = s * (F8)(((w >> 27) + (127u - kSharedExponentStepShift)) << 23);
-            store(r + j, __builtin_convertvector((I8)(w & mantissa), F8) * step);
-            store(g + j, __builtin_convertvector((I8)((w >> 9) & mantissa), F8) * step);
-            store(bl + j, __builtin_convertvector((I8)((w >> 18) & mantissa), F8) * step);
-        }
-        return;
-    }
+/// Whether every step scale * 2^(e - 39) of a tile's shared exponents is a normal float: then
+/// the float product of mantissa and step rounds the same exact product once, as the decoder's
+/// double arithmetic does (Quantize.cpp).
+bool floatSteps(float scale) {
+    return scale >= 0x1p-87f && scale <= FLT_MAX;
+}
+
+/// A shared-exponent plane's run of `count` pixels to floats, one at a time by the per-value
+/// decoder.
+void sharedExponentRunOneByOne(const std::uint8_t* b, std::size_t stride, int count, float scale,
+                               float* r, float* g, float* bl) {
     for (int j = 0; j < count; ++j) {
         const std::uint32_t w = b[j] | std::uint32_t{b[stride + j]} << 8 |
                                 std::uint32_t{b[2 * stride + j]} << 16 |
                                 std::uint32_t{b[3 * stride + j]} << 24;
         const glm::vec3 v = decodeSharedExponent(w, scale);
         r[j] = v.x, g[j] = v.y, bl[j] = v.z;
+    }
+}
+
+/// The same four lanes at a time (SSE2), writing up to three entries past the run, when the
+/// steps are floats.
+void sharedExponentRun(const std::uint8_t* b, std::size_t stride, int count, float scale, float* r,
+                       float* g, float* bl) {
+    if (!floatSteps(scale)) return sharedExponentRunOneByOne(b, stride, count, scale, r, g, bl);
+    const F4 s = splat<F4>(scale);
+    const U4 mantissa = U4{} + 511u;
+    for (int j = 0; j < count; j += 4) {
+        const U4 w = loadBytes4(b + j) | loadBytes4(b + stride + j) << 8 |
+                     loadBytes4(b + 2 * stride + j) << 16 | loadBytes4(b + 3 * stride + j) << 24;
+        // 2^(e - 39), e = w >> 27, as the bits of a float: biased exponent e - 39 + 127.
+        const F4 step = s * (F4)(((w >> 27) + (127u - kSharedExponentStepShift)) << 23);
+        store(r + j, __builtin_convertvector((I4)(w & mantissa), F4) * step);
+        store(g + j, __builtin_convertvector((I4)((w >> 9) & mantissa), F4) * step);
+        store(bl + j, __builtin_convertvector((I4)((w >> 18) & mantissa), F4) * step);
     }
 }
 
@@ -129,12 +138,11 @@ IGI_AVX2 inline __m256i bytesAt(const std::uint8_t* p) {
 
 IGI_AVX2 void sharedExponentRunAvx2(const std::uint8_t* b, std::size_t stride, int count,
                                     float scale, float* r, float* g, float* bl) {
-    if (!(scale >= 0x1p-87f && scale <= FLT_MAX))
-        return sharedExponentRun(b, stride, count, scale, r, g, bl);
+    if (!floatSteps(scale)) return sharedExponentRunOneByOne(b, stride, count, scale, r, g, bl);
     const __m256 s = _mm256_set1_ps(scale);
     const __m256i mantissa = _mm256_set1_epi32(511);
     const __m256i bias = _mm256_set1_epi32(127 - kSharedExponentStepShift);
-    for (int j = 0; j < count; j += kWidth) {
+    for (int j = 0; j < count; j += 8) {
         const __m256i w = _mm256_or_si256(
             _mm256_or_si256(bytesAt(b + j), _mm256_slli_epi32(bytesAt(b + stride + j), 8)),
             _mm256_or_si256(_mm256_slli_epi32(bytesAt(b + 2 * stride + j), 16),
@@ -152,21 +160,40 @@ IGI_AVX2 void sharedExponentRunAvx2(const std::uint8_t* b, std::size_t stride, i
     }
 }
 
+/// Whether the eight codes are all the same (a flat surface's albedo or normal): then one
+/// table entry serves them, without a gather.
+IGI_AVX2 inline bool uniform(__m256i code) {
+    const __m256i first = _mm256_broadcastd_epi32(_mm256_castsi256_si128(code));
+    return _mm256_movemask_epi8(_mm256_cmpeq_epi32(code, first)) == -1;
+}
+
+IGI_AVX2 inline __m256 lookUp(const float* table, __m256i code) {
+    if (uniform(code)) return _mm256_set1_ps(table[_mm256_cvtsi256_si32(code)]);
+    return _mm256_i32gather_ps(table, code, 4);
+}
+
 IGI_AVX2 void srgbRunAvx2(const std::uint8_t* b, std::size_t stride, int count, const float* table,
                           float* r, float* g, float* bl) {
-    for (int j = 0; j < count; j += kWidth) {
-        _mm256_storeu_ps(r + j, _mm256_i32gather_ps(table, bytesAt(b + j), 4));
-        _mm256_storeu_ps(g + j, _mm256_i32gather_ps(table, bytesAt(b + stride + j), 4));
-        _mm256_storeu_ps(bl + j, _mm256_i32gather_ps(table, bytesAt(b + 2 * stride + j), 4));
+    for (int j = 0; j < count; j += 8) {
+        _mm256_storeu_ps(r + j, lookUp(table, bytesAt(b + j)));
+        _mm256_storeu_ps(g + j, lookUp(table, bytesAt(b + stride + j)));
+        _mm256_storeu_ps(bl + j, lookUp(table, bytesAt(b + 2 * stride + j)));
     }
 }
 
 IGI_AVX2 void normalRunAvx2(const std::uint8_t* b, std::size_t stride, int count,
                             const glm::vec3* table, float* x, float* y, float* z) {
     const float* base = &table->x;
-    for (int j = 0; j < count; j += kWidth) {
+    for (int j = 0; j < count; j += 8) {
         const __m256i code =
             _mm256_or_si256(bytesAt(b + j), _mm256_slli_epi32(bytesAt(b + stride + j), 8));
+        if (uniform(code)) {
+            const glm::vec3 n = table[_mm256_cvtsi256_si32(code)];
+            _mm256_storeu_ps(x + j, _mm256_set1_ps(n.x));
+            _mm256_storeu_ps(y + j, _mm256_set1_ps(n.y));
+            _mm256_storeu_ps(z + j, _mm256_set1_ps(n.z));
+            continue;
+        }
         const __m256i at = _mm256_add_epi32(code, _mm256_slli_epi32(code, 1));  // 3 floats each
         _mm256_storeu_ps(x + j, _mm256_i32gather_ps(base, at, 4));
         _mm256_storeu_ps(y + j, _mm256_i32gather_ps(base + 1, at, 4));
@@ -189,7 +216,7 @@ IGI_AVX2 void depthRunAvx2(const std::uint8_t* b, std::size_t stride, int count,
                            const double* octave, const double* full, float* depth) {
     const __m256d reference = _mm256_set1_pd(d0);
     const __m256i infinite = _mm256_set1_epi32(kDepthInfinite);
-    for (int j = 0; j < count; j += kWidth) {
+    for (int j = 0; j < count; j += 8) {
         const __m256i code =
             _mm256_or_si256(bytesAt(b + j), _mm256_slli_epi32(bytesAt(b + stride + j), 8));
         const __m128 low = _mm256_cvtpd_ps(

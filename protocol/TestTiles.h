@@ -37,6 +37,9 @@ struct RandomTiles {
                             : u(rng) < 0.1f ? 1e37f
                                             : 1.0f;
         const float surface = u(rng) < 0.5f ? 2.0f : 2.06f;
+        // Half the tiles a flat albedo (the same codes pixel after pixel), half a texture.
+        const bool flat = u(rng) < 0.5f;
+        const glm::vec3 albedo(u(rng), u(rng), u(rng));
         for (int i = 0; i < c.count; ++i) {
             const float r = u(rng);
             if (!c.depth.empty())
@@ -54,7 +57,8 @@ struct RandomTiles {
                 c.irradiance[i] = glm::vec3(u(rng), u(rng), u(rng)) * 3.0f * dark * scale;
                 if (u(rng) < 0.02f) c.irradiance[i].x = -1.0f;
             }
-            if (!c.reflectance.empty()) c.reflectance[i] = glm::vec3(u(rng), u(rng), u(rng));
+            if (!c.reflectance.empty())
+                c.reflectance[i] = flat ? albedo : glm::vec3(u(rng), u(rng), u(rng));
             if (!c.unfiltered.empty())
                 c.unfiltered[i] = u(rng) < 0.2f ? glm::vec3(u(rng)) : glm::vec3(0.0f);
             if (!c.glossy.empty())

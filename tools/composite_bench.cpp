@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <random>
 #include <vector>
 
@@ -84,6 +85,12 @@ double seconds(Clock::time_point since) {
     return std::chrono::duration<double>(Clock::now() - since).count();
 }
 
+double threadCpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -110,44 +117,46 @@ int main(int argc, char** argv) {
 
     // One worker, and everything runs on it: the master's --threads 1.
     ThreadPool pool(1);
-    double best[4] = {1e30, 1e30, 1e30, 1e30};
+    double best[3] = {1e30, 1e30, 1e30}, bestCpu = 1e30;
     pool.submit([&] {
         FrameCompositor compositor(width, height, settings, pool);
         std::vector<proto::CodedFrame> buffers(2);  // the master keeps two frames or more open
         for (int r = 0; r < rounds; ++r) {
-            double t[4] = {0, 0, 0, 0};
+            double t[2] = {0, 0};
+            const double cpuStart = threadCpuSeconds();
             compositor.resetAccumulation();
             for (int f = 0; f < frames; ++f) {
                 proto::CodedFrame& frame = buffers[std::size_t(f) % buffers.size()];
                 frame.reuse(width, height, settings.interleaveX, settings.interleaveY,
                             settings.tileSize);
-                // Tile by tile, as the master does: read, then decompressed into the frame.
-                for (std::size_t i = 0; i < tiles.size(); ++i) {
-                    auto start = Clock::now();
-                    proto::ByteReader in(wire[i], "TileResult");
-                    const proto::TileCodes codes = proto::readTileCodes(in);
-                    t[0] += seconds(start);
-                    start = Clock::now();
-                    frame.scatter(tiles[i], codes);
-                    t[1] += seconds(start);
-                }
+                // Tile by tile, as the master does: decompressed into the frame, still coded.
                 auto start = Clock::now();
+                for (std::size_t i = 0; i < tiles.size(); ++i) {
+                    proto::ByteReader in(wire[i], "TileResult");
+                    frame.scatter(tiles[i], proto::readTileCodes(in));
+                }
+                t[0] += seconds(start);
+                start = Clock::now();
                 compositor.composite(frame);
-                t[2] += seconds(start);
+                t[1] += seconds(start);
             }
-            for (int k = 0; k < 3; ++k) best[k] = std::min(best[k], t[k]);
-            best[3] = std::min(best[3], t[0] + t[1] + t[2]);
+            bestCpu = std::min(bestCpu, threadCpuSeconds() - cpuStart);
+            for (int k = 0; k < 2; ++k) best[k] = std::min(best[k], t[k]);
+            best[2] = std::min(best[2], t[0] + t[1]);
         }
     });
     pool.waitIdle();
     const double pixels = double(width) * height * frames;
-    const char* names[4] = {"read (headers)", "decompress into the frame (zstd)",
+    const char* names[3] = {"decode (zstd, into the frame)",
                             "dequantize + filter + accumulate + mean", "total"};
     std::printf("%d x %d, %d frames a round, best of %d rounds, one thread\n", width, height,
                 frames, rounds);
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < 3; ++k)
         std::printf("%-40s %6.1f ns/pixel\n", names[k], best[k] * 1e9 / pixels);
-    std::printf("master ceiling: %.1f M pixels/s (%.1f fps)\n", pixels / best[3] * 1e-6,
-                frames / best[3]);
+    // On a shared machine the wall clock counts the time others held the core; the thread's
+    // CPU time does not (nor does it count what they did to its caches).
+    std::printf("%-40s %6.1f ns/pixel\n", "total, thread CPU time", bestCpu * 1e9 / pixels);
+    std::printf("master ceiling: %.1f M pixels/s (%.1f fps)\n", pixels / best[2] * 1e-6,
+                frames / best[2]);
     return 0;
 }

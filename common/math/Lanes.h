@@ -1,21 +1,26 @@
 #pragma once
 
-// Eight floats (eight 32-bit integers, four doubles) computed lane by lane, written once as
-// GCC and Clang vector extensions: the same kernel compiles to pairs of SSE2 instructions for
-// any x86-64, and to single AVX2 instructions when it is inlined into a function marked
-// IGI_AVX2, which runs only where the processor has AVX2 (hasAvx2). The build flags stay
-// those of any x86-64 (no -march=native): the AVX2 code exists beside the baseline code.
+// Floats (and 32-bit integers, and doubles) computed lane by lane, written once as GCC and
+// Clang vector extensions over a vector type V: F4, four floats, which any x86-64 runs as SSE2,
+// or F8, eight floats, which functions marked IGI_AVX2 run as AVX2 where the processor has it
+// (hasAvx2). A kernel is a template on V, instantiated twice; the build flags stay those of any
+// x86-64 (no -march=native).
 //
 // Every operation is IEEE-exact per lane, as the scalar code it replaces: the avx2 target
-// does not enable FMA (so no multiply-add is contracted), and nothing here uses approximate
-// reciprocals. A kernel built from these therefore gives the same bits in both instantiations
-// and as its scalar reference.
+// does not enable FMA (and igi_common and igi_protocol build with -ffp-contract=off besides),
+// and nothing here uses approximate reciprocals. A kernel built from these therefore gives the
+// same bits in both instantiations and as its scalar reference.
 //
 // Helpers are always inlined: a vector argument passed by value between functions of
 // different targets would change the calling convention (hence the -Wpsabi note, silenced).
 
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
@@ -33,68 +38,92 @@
 
 namespace igi::lanes {
 
-typedef float F8 __attribute__((vector_size(32)));
-typedef std::int32_t I8 __attribute__((vector_size(32)));
-typedef std::uint32_t U8 __attribute__((vector_size(32)));
-typedef double D4 __attribute__((vector_size(32)));
 typedef float F4 __attribute__((vector_size(16)));
-typedef std::uint8_t B8 __attribute__((vector_size(8)));
-typedef std::uint16_t H8 __attribute__((vector_size(16)));
-
-constexpr int kWidth = 8;  ///< floats per F8
+typedef float F8 __attribute__((vector_size(32)));
+typedef std::int32_t I4 __attribute__((vector_size(16)));
+typedef std::int32_t I8 __attribute__((vector_size(32)));
+typedef std::uint32_t U4 __attribute__((vector_size(16)));
+typedef std::uint32_t U8 __attribute__((vector_size(32)));
+typedef double D2 __attribute__((vector_size(16)));
+typedef double D4 __attribute__((vector_size(32)));
 
 /// Whether this processor runs AVX2 code (asked once; IGI_NO_AVX2=1 says no).
 bool hasAvx2();
 
-/// The code a kernel runs: eight lanes as SSE2 pairs (any x86-64) or as AVX2, the same bits.
+/// The code a kernel runs: four lanes of SSE2 (any x86-64) or eight of AVX2, the same bits.
 enum class Isa { kBaseline, kAvx2 };
 inline Isa bestIsa() {
     return hasAvx2() ? Isa::kAvx2 : Isa::kBaseline;
 }
 
-IGI_LANES F8 load(const float* p) {
-    F8 v;
+/// Floats per vector.
+template <class V>
+constexpr int kLanes = int(sizeof(V) / sizeof(float));
+/// What comparing two V gives: lanes of all ones or all zeros.
+template <class V>
+using Mask = decltype(V{} < V{});
+/// The 32-bit integers of V's lanes.
+template <class V>
+using Ints = std::conditional_t<sizeof(V) == 16, I4, I8>;
+template <class V>
+using Uints = std::conditional_t<sizeof(V) == 16, U4, U8>;
+/// Half of V's lanes as doubles.
+template <class V>
+using Half = std::conditional_t<sizeof(V) == 16, D2, D4>;
+
+template <class V>
+IGI_LANES V load(const float* p) {
+    V v;
     std::memcpy(&v, p, sizeof v);
     return v;
 }
-IGI_LANES void store(float* p, F8 v) {
-    std::memcpy(p, &v, sizeof v);
-}
-IGI_LANES D4 loadD4(const double* p) {
-    D4 v;
+template <class V>
+IGI_LANES V loadDoubles(const double* p) {
+    V v;
     std::memcpy(&v, p, sizeof v);
     return v;
 }
-IGI_LANES void store(double* p, D4 v) {
+template <class V>
+IGI_LANES void store(float* p, V v) {
     std::memcpy(p, &v, sizeof v);
 }
-/// Eight bytes, zero-extended to 32 bits each.
-IGI_LANES U8 loadBytes(const std::uint8_t* p) {
-    B8 v;
-    std::memcpy(&v, p, sizeof v);
-    return __builtin_convertvector(v, U8);
+template <class V>
+IGI_LANES void store(double* p, V v) {
+    std::memcpy(p, &v, sizeof v);
 }
 
-IGI_LANES F8 splat(float x) {
-    return F8{x, x, x, x, x, x, x, x};
+template <class V>
+IGI_LANES V splat(float x) {
+    return V{} + x;
 }
-IGI_LANES D4 splat(double x) {
-    return D4{x, x, x, x};
+template <class V>
+IGI_LANES V splat(double x) {
+    return V{} + x;
 }
-IGI_LANES I8 splat(std::int32_t x) {
-    return I8{x, x, x, x, x, x, x, x};
+template <class V>
+IGI_LANES Ints<V> splatInt(std::int32_t x) {
+    return Ints<V>{} + x;
 }
 
-/// mask ? a : b, lane by lane (mask lanes are all ones or all zeros, as comparisons give).
-IGI_LANES F8 select(I8 mask, F8 a, F8 b) {
-    return (F8)((mask & (I8)a) | (~mask & (I8)b));
+/// mask ? a : b, lane by lane, for floats or doubles; `mask` is a comparison of the same type.
+template <class V, class M>
+IGI_LANES V select(M mask, V a, V b) {
+    static_assert(sizeof(M) == sizeof(V));
+    return (V)((mask & (M)a) | (~mask & (M)b));
 }
-IGI_LANES F8 abs(F8 a) {
-    return (F8)((I8)a & splat(0x7FFFFFFF));
+template <class V>
+IGI_LANES V abs(V a) {
+    return (V)((Ints<V>)a & splatInt<V>(0x7FFFFFFF));
 }
 /// All ones where the lane is finite (not NaN, not +-inf).
-IGI_LANES I8 finite(F8 a) {
-    return ((I8)a & splat(0x7F800000)) != splat(0x7F800000);
+template <class V>
+IGI_LANES Ints<V> finite(V a) {
+    return ((Ints<V>)a & splatInt<V>(0x7F800000)) != splatInt<V>(0x7F800000);
+}
+/// std::max(a, b) lane by lane: (a < b) ? b : a, so a NaN in b gives a, as the scalar does.
+template <class V>
+IGI_LANES V stdMax(V a, V b) {
+    return select(a < b, b, a);
 }
 
 #if IGI_HAS_AVX2_TARGET && !defined(__clang__)
@@ -106,44 +135,50 @@ IGI_AVX2 inline D4 widenAvx(F4 a) {
 }
 #endif
 
-/// Lanes 0-3 and 4-7 of a, as doubles (exact), and back (rounded as static_cast<float>).
-/// `Avx2`: the caller is AVX2 code (IGI_AVX2).
-template <bool Avx2 = false>
-IGI_LANES D4 lowD4(F8 a) {
+/// The first and the second half of V's lanes, as doubles (exact).
+IGI_LANES D2 lowHalf(F4 a) {
+    return __builtin_convertvector(__builtin_shufflevector(a, a, 0, 1), D2);
+}
+IGI_LANES D2 highHalf(F4 a) {
+    return __builtin_convertvector(__builtin_shufflevector(a, a, 2, 3), D2);
+}
+IGI_LANES D4 lowHalf(F8 a) {
     const F4 low = __builtin_shufflevector(a, a, 0, 1, 2, 3);
 #if IGI_HAS_AVX2_TARGET && !defined(__clang__)
-    if constexpr (Avx2) return widenAvx(low);
-#endif
+    return widenAvx(low);
+#else
     return __builtin_convertvector(low, D4);
+#endif
 }
-template <bool Avx2 = false>
-IGI_LANES D4 highD4(F8 a) {
+IGI_LANES D4 highHalf(F8 a) {
     const F4 high = __builtin_shufflevector(a, a, 4, 5, 6, 7);
 #if IGI_HAS_AVX2_TARGET && !defined(__clang__)
-    if constexpr (Avx2) return widenAvx(high);
-#endif
+    return widenAvx(high);
+#else
     return __builtin_convertvector(high, D4);
+#endif
 }
-IGI_LANES F4 toF4(D4 a) {
-    return __builtin_convertvector(a, F4);
+/// Two halves of doubles back to floats (rounded as static_cast<float>), in one vector.
+IGI_LANES F4 narrow(D2 low, D2 high) {
+    return __builtin_convertvector(__builtin_shufflevector(low, high, 0, 1, 2, 3), F4);
 }
-IGI_LANES F8 join(F4 low, F4 high) {
-    return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
-}
-IGI_LANES void store(float* p, F4 v) {
-    std::memcpy(p, &v, sizeof v);
+IGI_LANES F8 narrow(D4 low, D4 high) {
+    typedef float F4h __attribute__((vector_size(16)));
+    const F4h a = __builtin_convertvector(low, F4h), b = __builtin_convertvector(high, F4h);
+    return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
 }
 
-/// mask ? a : b for doubles; `mask` is a comparison of doubles (lanes all ones or zeros).
-template <typename Mask>
-IGI_LANES D4 select(Mask mask, D4 a, D4 b) {
-    typedef std::int64_t L4 __attribute__((vector_size(32)));
-    const L4 m = (L4)mask;
-    return (D4)((m & (L4)a) | (~m & (L4)b));
-}
-/// std::max(a, b) lane by lane: (a < b) ? b : a, so a NaN in b gives a, as the scalar does.
-IGI_LANES D4 stdMax(D4 a, D4 b) {
-    return select(a < b, b, a);
+/// The bytes at p, one per lane, zero-extended to 32 bits.
+IGI_LANES U4 loadBytes4(const std::uint8_t* p) {
+#if defined(__SSE2__)
+    std::int32_t word;
+    std::memcpy(&word, p, sizeof word);
+    const __m128i zero = _mm_setzero_si128();
+    const __m128i bytes = _mm_cvtsi32_si128(word);
+    return (U4)_mm_unpacklo_epi16(_mm_unpacklo_epi8(bytes, zero), zero);
+#else
+    return U4{p[0], p[1], p[2], p[3]};
+#endif
 }
 
 }  // namespace igi::lanes

@@ -1,6 +1,7 @@
 #include "render/RowAccumulator.h"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "render/Accumulator.h"
 #include "render/DiscontinuityFilter.h"
@@ -15,28 +16,36 @@ namespace {
 using namespace lanes;
 using S = ShadedRow;
 
-// A block holds the sums of eight pixels: field f of pixel j at [f * 8 + j].
+// A block holds the sums of eight pixels: field f of pixel j at [f * 8 + j]. A kernel of V
+// takes a block in kLanes<V> pixels at a time, each as two halves of doubles.
+constexpr int kBlock = 8;          // RowAccumulator::kPixelsPerBlock
 constexpr int kFilteredSum = 0;    // 3 fields: R, G, B of the filtered frames
 constexpr int kUnfilteredSum = 3;  // 3 fields, with withdrawBlur
 constexpr int kDifference2 = 6;    // sum of (lum filtered - lum unfiltered)^2, with withdrawBlur
 
-/// Accumulator's luminance(glm::vec3), in float.
-IGI_LANES F8 luminance(F8 r, F8 g, F8 b) {
-    return splat(0.2126f) * r + splat(0.7152f) * g + splat(0.0722f) * b;
-}
-/// Accumulator's luminance(glm::dvec3).
-IGI_LANES D4 luminance(D4 r, D4 g, D4 b) {
-    return splat(0.2126) * r + splat(0.7152) * g + splat(0.0722) * b;
+/// Accumulator's luminance(glm::vec3) in float, and luminance(glm::dvec3) in double: the same
+/// literals (a float literal is not always the double one rounded to float).
+template <class V>
+IGI_LANES V luminance(V r, V g, V b) {
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(r[0])>, float>)
+        return splat<V>(0.2126f) * r + splat<V>(0.7152f) * g + splat<V>(0.0722f) * b;
+    else
+        return splat<V>(0.2126) * r + splat<V>(0.7152) * g + splat<V>(0.0722) * b;
 }
 
-/// Accumulator::ownVariance on four pixels of a block (half h), from the sums after the frame.
-IGI_LANES D4 ownVariance(const double* block, int h, D4 inv, D4 invDegrees) {
-    auto sum = [&](int field) { return loadD4(block + field * kWidth + 4 * h); };
-    const D4 d = luminance(sum(kFilteredSum) * inv, sum(kFilteredSum + 1) * inv,
-                           sum(kFilteredSum + 2) * inv) -
-                 luminance(sum(kUnfilteredSum) * inv, sum(kUnfilteredSum + 1) * inv,
-                           sum(kUnfilteredSum + 2) * inv);
-    return stdMax(splat(0.0), sum(kDifference2) * inv - d * d) * invDegrees;
+/// Accumulator::ownVariance on the doubles of a block from `at` on, from the sums after the
+/// frame.
+template <class D>
+IGI_LANES D ownVariance(const double* at, D inv, D invDegrees) {
+    const D f[3] = {loadDoubles<D>(at + (kFilteredSum + 0) * kBlock) * inv,
+                    loadDoubles<D>(at + (kFilteredSum + 1) * kBlock) * inv,
+                    loadDoubles<D>(at + (kFilteredSum + 2) * kBlock) * inv};
+    const D u[3] = {loadDoubles<D>(at + (kUnfilteredSum + 0) * kBlock) * inv,
+                    loadDoubles<D>(at + (kUnfilteredSum + 1) * kBlock) * inv,
+                    loadDoubles<D>(at + (kUnfilteredSum + 2) * kBlock) * inv};
+    const D d = luminance(f[0], f[1], f[2]) - luminance(u[0], u[1], u[2]);
+    const D d2 = loadDoubles<D>(at + kDifference2 * kBlock);
+    return stdMax(splat<D>(0.0), d2 * inv - d * d) * invDegrees;
 }
 
 struct Layout {
@@ -44,55 +53,73 @@ struct Layout {
     int fields;
     bool withdraw;
     double* block(std::vector<double>& sums, int y, int b) const {
-        return sums.data() + (std::size_t(y) * blocks + b) * fields * kWidth;
+        return sums.data() + (std::size_t(y) * blocks + b) * fields * kBlock;
     }
     const double* block(const std::vector<double>& sums, int y, int b) const {
-        return sums.data() + (std::size_t(y) * blocks + b) * fields * kWidth;
+        return sums.data() + (std::size_t(y) * blocks + b) * fields * kBlock;
     }
 };
 
+/// Adds the lanes of `v` to the doubles at `sums` (its two halves).
+template <class V>
+IGI_LANES void addTo(double* sums, V v) {
+    using D = Half<V>;
+    constexpr int kHalf = kLanes<V> / 2;
+    store(sums, loadDoubles<D>(sums) + lowHalf(v));
+    store(sums + kHalf, loadDoubles<D>(sums + kHalf) + highHalf(v));
+}
+
 /// Accumulator::addRows for one row; `framesBefore` frames are in.
-template <bool Avx2>
+template <class V>
 IGI_LANES void addRowBody(const Layout& l, std::vector<double>& sums, int y, const ShadedRow& row,
                           int framesBefore, double* variance) {
+    using D = Half<V>;
+    constexpr int kWidth = kLanes<V>, kHalf = kWidth / 2;
     // The variance after this frame, of framesBefore + 1 frames (0 while there is one).
-    const D4 inv = splat(1.0 / (framesBefore + 1.0));
-    const D4 invDegrees = splat(framesBefore > 0 ? 1.0 / framesBefore : 0.0);
+    const D inv = splat<D>(1.0 / (framesBefore + 1.0));
+    const D invDegrees = splat<D>(framesBefore > 0 ? 1.0 / framesBefore : 0.0);
+    const std::size_t blockBytes = std::size_t(l.fields) * kBlock * sizeof(double);
     for (int b = 0; b < l.blocks; ++b) {
-        double* s = l.block(sums, y, b);
-        const int i = b * kWidth;
-        const F8 f[3] = {load(row[S::kFr] + i), load(row[S::kFg] + i), load(row[S::kFb] + i)};
-        for (int c = 0; c < 3; ++c) {
-            double* field = s + (kFilteredSum + c) * kWidth;
-            store(field, loadD4(field) + lowD4<Avx2>(f[c]));
-            store(field + 4, loadD4(field + 4) + highD4<Avx2>(f[c]));
-        }
-        if (!l.withdraw) continue;
-        const F8 u[3] = {load(row[S::kUr] + i), load(row[S::kUg] + i), load(row[S::kUb] + i)};
-        for (int c = 0; c < 3; ++c) {
-            double* field = s + (kUnfilteredSum + c) * kWidth;
-            store(field, loadD4(field) + lowD4<Avx2>(u[c]));
-            store(field + 4, loadD4(field + 4) + highD4<Avx2>(u[c]));
-        }
-        const F8 lf = luminance(f[0], f[1], f[2]), lu = luminance(u[0], u[1], u[2]);
-        const D4 d[2] = {lowD4<Avx2>(lf) - lowD4<Avx2>(lu), highD4<Avx2>(lf) - highD4<Avx2>(lu)};
-        double* d2 = s + kDifference2 * kWidth;
-        for (int h = 0; h < 2; ++h) {
-            store(d2 + 4 * h, loadD4(d2 + 4 * h) + d[h] * d[h]);
-            store(variance + i + 4 * h,
-                  framesBefore > 0 ? ownVariance(s, h, inv, invDegrees) : splat(0.0));
+        double* block = l.block(sums, y, b);
+        // The sums stream from memory: ask for the blocks a few ahead.
+        const char* ahead = reinterpret_cast<const char*>(block) + 4 * blockBytes;
+        for (std::size_t line = 0; line < blockBytes; line += 64)
+            __builtin_prefetch(ahead + line, 1);
+        for (int j = 0; j < kBlock; j += kWidth) {
+            const int i = b * kBlock + j;
+            double* s = block + j;
+            const V f[3] = {load<V>(row[S::kFr] + i), load<V>(row[S::kFg] + i),
+                            load<V>(row[S::kFb] + i)};
+            for (int c = 0; c < 3; ++c) addTo(s + (kFilteredSum + c) * kBlock, f[c]);
+            if (!l.withdraw) continue;
+            const V u[3] = {load<V>(row[S::kUr] + i), load<V>(row[S::kUg] + i),
+                            load<V>(row[S::kUb] + i)};
+            for (int c = 0; c < 3; ++c) addTo(s + (kUnfilteredSum + c) * kBlock, u[c]);
+            const V lf = luminance(f[0], f[1], f[2]), lu = luminance(u[0], u[1], u[2]);
+            const D d[2] = {lowHalf(lf) - lowHalf(lu), highHalf(lf) - highHalf(lu)};
+            double* d2 = s + kDifference2 * kBlock;
+            for (int h = 0; h < 2; ++h) {
+                store(d2 + h * kHalf, loadDoubles<D>(d2 + h * kHalf) + d[h] * d[h]);
+                store(variance + i + h * kHalf, framesBefore > 0
+                                                    ? ownVariance(s + h * kHalf, inv, invDegrees)
+                                                    : splat<D>(0.0));
+            }
         }
     }
 }
 
+template <class V>
 IGI_LANES void varianceRowBody(const Layout& l, const std::vector<double>& sums, int y, int frames,
                                double* variance) {
-    const D4 inv = splat(1.0 / double(frames));
-    const D4 invDegrees = splat(frames > 1 ? 1.0 / double(frames - 1) : 0.0);
+    using D = Half<V>;
+    constexpr int kHalf = kLanes<V> / 2;
+    const D inv = splat<D>(1.0 / double(frames));
+    const D invDegrees = splat<D>(frames > 1 ? 1.0 / double(frames - 1) : 0.0);
     for (int b = 0; b < l.blocks; ++b)
-        for (int h = 0; h < 2; ++h)
-            store(variance + b * kWidth + 4 * h,
-                  frames > 1 ? ownVariance(l.block(sums, y, b), h, inv, invDegrees) : splat(0.0));
+        for (int j = 0; j < kBlock; j += kHalf)
+            store(
+                variance + b * kBlock + j,
+                frames > 1 ? ownVariance(l.block(sums, y, b) + j, inv, invDegrees) : splat<D>(0.0));
 }
 
 /// Per-thread arrays of meanRow.
@@ -105,8 +132,8 @@ struct MeanScratch {
 MeanScratch& meanScratch(const CellOrder& order, std::size_t entries) {
     thread_local MeanScratch scratch;
     scratch.mean.resize(order.width());
-    scratch.columns.resize(entries + kWidth);
-    scratch.pooled.resize(entries + kWidth);
+    scratch.columns.resize(entries + kBlock);
+    scratch.pooled.resize(entries + kBlock);
     return scratch;
 }
 
@@ -118,12 +145,14 @@ struct Pool {
     double perWindowPixel;
 };
 
+template <class D>
 IGI_LANES void poolVariance(const Pool& p, const double* own, const double* columns,
                             double* pooled) {
+    constexpr int kWidth = int(sizeof(D) / sizeof(double));
     const CellOrder& o = p.order;
     const int n = o.cells(), width = o.width(), half = (p.noiseX - 1) / 2;
     const int lastUnshifted = width - p.noiseX + half;
-    const D4 perWindowPixel = splat(p.perWindowPixel);
+    const D perWindowPixel = splat<D>(p.perWindowPixel);
     constexpr int kMaxLanesWindow = 64;
     int offsets[kMaxLanesWindow];
     for (int kx = 0; kx < n; ++kx) {
@@ -136,11 +165,12 @@ IGI_LANES void poolVariance(const Pool& p, const double* own, const double* colu
                 : -1;
         for (int c = 0; c < o.count(kx);) {
             const int i = o.start(kx) + c;
-            if (c >= cFirst && c + 3 <= cLast) {
-                D4 window = splat(0.0);
-                for (int k = 0; k < p.windowWidth; ++k) window += loadD4(columns + i + offsets[k]);
-                store(pooled + i, stdMax(loadD4(own + i), window * perWindowPixel));
-                c += 4;
+            if (c >= cFirst && c + kWidth - 1 <= cLast) {
+                D window = splat<D>(0.0);
+                for (int k = 0; k < p.windowWidth; ++k)
+                    window += loadDoubles<D>(columns + i + offsets[k]);
+                store(pooled + i, stdMax(loadDoubles<D>(own + i), window * perWindowPixel));
+                c += kWidth;
                 continue;
             }
             // The discontinuity buffer's window: every interleaving cell, also at the borders
@@ -163,25 +193,28 @@ struct Mean {
     int noiseY;
 };
 
+template <class V>
 IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y, int frames,
                            const double* const* variance, glm::vec3* out) {
+    using D = Half<V>;
+    constexpr int kWidth = kLanes<V>, kHalf = kWidth / 2;
     const Layout& l = m.l;
-    MeanScratch& scratch = meanScratch(m.order, std::size_t(l.blocks) * kWidth);
+    MeanScratch& scratch = meanScratch(m.order, std::size_t(l.blocks) * kBlock);
     float* mean[3] = {scratch.mean[0], scratch.mean[1], scratch.mean[2]};
-    const double invScalar = frames > 0 ? 1.0 / double(frames) : 0.0;
-    const D4 inv = splat(invScalar);
+    const D inv = splat<D>(frames > 0 ? 1.0 / double(frames) : 0.0);
     if (!l.withdraw || frames < 2) {
-        for (int b = 0; b < l.blocks; ++b) {
-            const double* s = l.block(sums, y, b);
-            for (int c = 0; c < 3; ++c) {
-                const double* field = s + (kFilteredSum + c) * kWidth;
-                store(mean[c] + b * kWidth,
-                      join(toF4(loadD4(field) * inv), toF4(loadD4(field + 4) * inv)));
+        for (int b = 0; b < l.blocks; ++b)
+            for (int j = 0; j < kBlock; j += kWidth) {
+                const double* s = l.block(sums, y, b) + j;
+                for (int c = 0; c < 3; ++c) {
+                    const double* field = s + (kFilteredSum + c) * kBlock;
+                    store(mean[c] + b * kBlock + j,
+                          narrow(loadDoubles<D>(field) * inv, loadDoubles<D>(field + kHalf) * inv));
+                }
             }
-        }
         return toImageOrder(m.order, mean[0], mean[1], mean[2], out);
     }
-    const D4 tolerance = splat(Accumulator::blurTolerance(frames));
+    const D tolerance = splat<D>(Accumulator::blurTolerance(frames));
     const int y0 = filterWindowStart(y, m.noiseY, m.height);
     const int y1 = std::min(m.height, y0 + m.noiseY);
     const double* own = variance[y - y0];
@@ -190,61 +223,66 @@ IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y
         // The window's variances summed down its rows, then across its columns: the order of
         // Accumulator::meanRows.
         double* columns = scratch.columns.data();
-        const std::size_t entries = std::size_t(l.blocks) * kWidth;
+        const std::size_t entries = std::size_t(l.blocks) * kBlock;
         std::copy_n(variance[0], entries, columns);
         for (int k = 1; k < y1 - y0; ++k)
-            for (std::size_t i = 0; i < entries; i += 4)
-                store(columns + i, loadD4(columns + i) + loadD4(variance[k] + i));
+            for (std::size_t i = 0; i < entries; i += kHalf)
+                store(columns + i, loadDoubles<D>(columns + i) + loadDoubles<D>(variance[k] + i));
         const int windowWidth = std::min(m.order.width(), m.noiseX);
         const Pool pool{m.order, m.noiseX, windowWidth, 1.0 / double(windowWidth * (y1 - y0))};
-        poolVariance(pool, own, columns, scratch.pooled.data());
+        poolVariance<D>(pool, own, columns, scratch.pooled.data());
         pooled = scratch.pooled.data();
     }
     for (int b = 0; b < l.blocks; ++b) {
-        const double* s = l.block(sums, y, b);
-        F4 halves[3][2];
-        for (int h = 0; h < 2; ++h) {
-            auto meanOf = [&](int field) { return loadD4(s + field * kWidth + 4 * h) * inv; };
-            const D4 f[3] = {meanOf(kFilteredSum), meanOf(kFilteredSum + 1),
-                             meanOf(kFilteredSum + 2)};
-            const D4 u[3] = {meanOf(kUnfilteredSum), meanOf(kUnfilteredSum + 1),
-                             meanOf(kUnfilteredSum + 2)};
-            const D4 d = luminance(f[0], f[1], f[2]) - luminance(u[0], u[1], u[2]);
-            const D4 allowed = tolerance * loadD4(pooled + b * kWidth + 4 * h);
-            const D4 d2 = d * d;
-            const D4 w = select(d2 <= allowed, splat(1.0), allowed / d2);
-            for (int c = 0; c < 3; ++c) halves[c][h] = toF4(w * f[c] + (splat(1.0) - w) * u[c]);
+        for (int j = 0; j < kBlock; j += kWidth) {
+            const double* s = l.block(sums, y, b) + j;
+            D halves[3][2];
+            for (int h = 0; h < 2; ++h) {
+                const double* at = s + h * kHalf;
+                const D f[3] = {loadDoubles<D>(at + (kFilteredSum + 0) * kBlock) * inv,
+                                loadDoubles<D>(at + (kFilteredSum + 1) * kBlock) * inv,
+                                loadDoubles<D>(at + (kFilteredSum + 2) * kBlock) * inv};
+                const D u[3] = {loadDoubles<D>(at + (kUnfilteredSum + 0) * kBlock) * inv,
+                                loadDoubles<D>(at + (kUnfilteredSum + 1) * kBlock) * inv,
+                                loadDoubles<D>(at + (kUnfilteredSum + 2) * kBlock) * inv};
+                const D d = luminance(f[0], f[1], f[2]) - luminance(u[0], u[1], u[2]);
+                const D allowed = tolerance * loadDoubles<D>(pooled + b * kBlock + j + h * kHalf);
+                const D d2 = d * d;
+                const D w = select(d2 <= allowed, splat<D>(1.0), allowed / d2);
+                for (int c = 0; c < 3; ++c) halves[c][h] = w * f[c] + (splat<D>(1.0) - w) * u[c];
+            }
+            for (int c = 0; c < 3; ++c)
+                store(mean[c] + b * kBlock + j, narrow(halves[c][0], halves[c][1]));
         }
-        for (int c = 0; c < 3; ++c) store(mean[c] + b * kWidth, join(halves[c][0], halves[c][1]));
     }
     toImageOrder(m.order, mean[0], mean[1], mean[2], out);
 }
 
 void addRowBaseline(const Layout& l, std::vector<double>& sums, int y, const ShadedRow& row,
                     int framesBefore, double* variance) {
-    addRowBody<false>(l, sums, y, row, framesBefore, variance);
+    addRowBody<F4>(l, sums, y, row, framesBefore, variance);
 }
 void varianceRowBaseline(const Layout& l, const std::vector<double>& sums, int y, int frames,
                          double* variance) {
-    varianceRowBody(l, sums, y, frames, variance);
+    varianceRowBody<F4>(l, sums, y, frames, variance);
 }
 void meanRowBaseline(const Mean& m, const std::vector<double>& sums, int y, int frames,
                      const double* const* variance, glm::vec3* out) {
-    meanRowBody(m, sums, y, frames, variance, out);
+    meanRowBody<F4>(m, sums, y, frames, variance, out);
 }
 
 #if IGI_HAS_AVX2_TARGET
 IGI_AVX2 void addRowAvx2(const Layout& l, std::vector<double>& sums, int y, const ShadedRow& row,
                          int framesBefore, double* variance) {
-    addRowBody<true>(l, sums, y, row, framesBefore, variance);
+    addRowBody<F8>(l, sums, y, row, framesBefore, variance);
 }
 IGI_AVX2 void varianceRowAvx2(const Layout& l, const std::vector<double>& sums, int y, int frames,
                               double* variance) {
-    varianceRowBody(l, sums, y, frames, variance);
+    varianceRowBody<F8>(l, sums, y, frames, variance);
 }
 IGI_AVX2 void meanRowAvx2(const Mean& m, const std::vector<double>& sums, int y, int frames,
                           const double* const* variance, glm::vec3* out) {
-    meanRowBody(m, sums, y, frames, variance, out);
+    meanRowBody<F8>(m, sums, y, frames, variance, out);
 }
 #endif
 
@@ -258,9 +296,9 @@ void RowAccumulator::reset(const CellOrder& order, int height, bool withdrawBlur
     withdrawBlur_ = withdrawBlur;
     noiseX_ = std::max(1, noiseX);
     noiseY_ = std::max(1, noiseY);
-    blocks_ = (order.width() + kWidth - 1) / kWidth;
+    blocks_ = (order.width() + kBlock - 1) / kBlock;
     fields_ = withdrawBlur ? 7 : 3;
-    sums_.assign(std::size_t(height) * blocks_ * fields_ * kWidth, 0.0);
+    sums_.assign(std::size_t(height) * blocks_ * fields_ * kBlock, 0.0);
 }
 
 void RowAccumulator::addRow(int y, const ShadedRow& row, double* variance, Isa isa) {

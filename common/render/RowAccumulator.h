@@ -37,19 +37,21 @@ class RowAccumulator {
     /// The rows [first, second) whose variance the mean of row y reads.
     std::pair<int, int> meanWindow(int y) const;
     /// Entries of a variance row (the width, rounded up to whole lanes).
-    std::size_t varianceEntries() const { return std::size_t(blocks_) * lanes::kWidth; }
+    std::size_t varianceEntries() const { return std::size_t(blocks_) * kPixelsPerBlock; }
 
     int frames() const { return frames_; }
     bool withdrawsBlur() const { return withdrawBlur_; }
 
   private:
+    static constexpr int kPixelsPerBlock = 8;
+
     CellOrder order_;
     int height_ = 0;
     int frames_ = 0;
     bool withdrawBlur_ = false;
     int noiseX_ = 1;
     int noiseY_ = 1;
-    int blocks_ = 0;  ///< blocks of eight pixels per row
+    int blocks_ = 0;  ///< blocks of kPixelsPerBlock pixels per row
     int fields_ = 3;  ///< sums per pixel: filtered RGB; with withdrawBlur unfiltered RGB and d^2
     std::vector<double> sums_;
 };

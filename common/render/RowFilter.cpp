@@ -72,26 +72,21 @@ void filterPixel(const Setup& u, int x, ShadedRow& out) {
     put(out, S::kFr, i, reflectance * irradiance + glossy + unfiltered);
 }
 
-/// The three lanes of planes `plane` .. `plane` + 2 at position i.
-struct Rgb {
-    F8 r, g, b;
-};
-IGI_LANES Rgb load3(const float* const* planes, int i) {
-    return {load(planes[0] + i), load(planes[1] + i), load(planes[2] + i)};
-}
-
 // Exactly the arithmetic of filterPixel, lane by lane: the tests are negated as there (a NaN
 // passes), a rejected neighbour adds +0, which changes no sum (a sum that starts at +0 is
 // never -0), and the count is a small integer, exact as a float. `offsets[k]`: from the
 // position of a pixel to that of its window's k-th column.
-template <bool Glossy, bool Unfiltered>
+template <class V, bool Glossy, bool Unfiltered>
 IGI_LANES void filterLanes(const Setup& u, const int* offsets, int i, ShadedRow& out) {
+    using M = Ints<V>;
     const FrameRow& c = *u.window.centre;
-    const F8 zero = splat(0.0f), one = splat(1.0f);
-    const F8 d = load(c[R::kDepth] + i);
-    const F8 nx = load(c[R::kNx] + i), ny = load(c[R::kNy] + i), nz = load(c[R::kNz] + i);
-    const F8 tolerance = splat(u.s.depthThreshold) * d, threshold = splat(u.s.normalThreshold);
-    F8 sr = zero, sg = zero, sb = zero, gr = zero, gg = zero, gb = zero, count = zero;
+    const V zero = splat<V>(0.0f);
+    const V d = load<V>(c[R::kDepth] + i);
+    const V nx = load<V>(c[R::kNx] + i), ny = load<V>(c[R::kNy] + i), nz = load<V>(c[R::kNz] + i);
+    const V tolerance = splat<V>(u.s.depthThreshold) * d;
+    const V threshold = splat<V>(u.s.normalThreshold);
+    V sr = zero, sg = zero, sb = zero, gr = zero, gg = zero, gb = zero;
+    M passed = splatInt<V>(0);  // neighbours that passed, counted in integers (minus the mask)
     for (int r = 0; r < u.window.count; ++r) {
         const FrameRow& row = *u.window.rows[r];
         const float* depth = row[R::kDepth] + i;
@@ -100,45 +95,45 @@ IGI_LANES void filterLanes(const Setup& u, const int* offsets, int i, ShadedRow&
         const float *qr = row[R::kGr] + i, *qg = row[R::kGg] + i, *qb = row[R::kGb] + i;
         for (int k = 0; k < u.s.sizeX; ++k) {
             const int q = offsets[k];
-            const F8 dot = load(mx + q) * nx + load(my + q) * ny + load(mz + q) * nz;
-            const I8 pass = ~(abs(load(depth + q) - d) > tolerance) & ~(dot < threshold);
-            sr += select(pass, load(er + q), zero);
-            sg += select(pass, load(eg + q), zero);
-            sb += select(pass, load(eb + q), zero);
+            const V dot = load<V>(mx + q) * nx + load<V>(my + q) * ny + load<V>(mz + q) * nz;
+            const M pass = ~(abs(load<V>(depth + q) - d) > tolerance) & ~(dot < threshold);
+            sr += select(pass, load<V>(er + q), zero);
+            sg += select(pass, load<V>(eg + q), zero);
+            sb += select(pass, load<V>(eb + q), zero);
             if constexpr (Glossy) {
-                gr += select(pass, load(qr + q), zero);
-                gg += select(pass, load(qg + q), zero);
-                gb += select(pass, load(qb + q), zero);
+                gr += select(pass, load<V>(qr + q), zero);
+                gg += select(pass, load<V>(qg + q), zero);
+                gb += select(pass, load<V>(qb + q), zero);
             }
-            count += select(pass, one, zero);
+            passed -= pass;
         }
     }
-    const float* ePlanes[3] = {c[R::kEr], c[R::kEg], c[R::kEb]};
-    const float* rPlanes[3] = {c[R::kRr], c[R::kRg], c[R::kRb]};
-    const float* uPlanes[3] = {c[R::kUr], c[R::kUg], c[R::kUb]};
-    const float* gPlanes[3] = {c[R::kGr], c[R::kGg], c[R::kGb]};
-    const Rgb e = load3(ePlanes, i), refl = load3(rPlanes, i), unf = load3(uPlanes, i);
-    const Rgb g = Glossy ? load3(gPlanes, i) : Rgb{zero, zero, zero};
-    const I8 any = count > zero, finiteDepth = finite(d);
-    const F8 fr = select(any, sr / count, e.r), fg = select(any, sg / count, e.g),
-             fb = select(any, sb / count, e.b);
-    F8 hr = zero, hg = zero, hb = zero;
+    const V count = __builtin_convertvector(passed, V);  // small integers: exact
+    const V er = load<V>(c[R::kEr] + i), eg = load<V>(c[R::kEg] + i), eb = load<V>(c[R::kEb] + i);
+    const V rr = load<V>(c[R::kRr] + i), rg = load<V>(c[R::kRg] + i), rb = load<V>(c[R::kRb] + i);
+    const V ur = load<V>(c[R::kUr] + i), ug = load<V>(c[R::kUg] + i), ub = load<V>(c[R::kUb] + i);
+    V hr = zero, hg = zero, hb = zero, og = zero, oh = zero, ob = zero;  // glossy: filtered, own
+    const M any = passed > splatInt<V>(0), finiteDepth = finite(d);
     if constexpr (Glossy) {
-        hr = select(any, gr / count, g.r), hg = select(any, gg / count, g.g);
-        hb = select(any, gb / count, g.b);
+        og = load<V>(c[R::kGr] + i), oh = load<V>(c[R::kGg] + i), ob = load<V>(c[R::kGb] + i);
+        hr = select(any, gr / count, og), hg = select(any, gg / count, oh);
+        hb = select(any, gb / count, ob);
     }
-    store(out[S::kFr] + i, select(finiteDepth, refl.r * fr + hr + unf.r, unf.r));
-    store(out[S::kFg] + i, select(finiteDepth, refl.g * fg + hg + unf.g, unf.g));
-    store(out[S::kFb] + i, select(finiteDepth, refl.b * fb + hb + unf.b, unf.b));
+    const V fr = select(any, sr / count, er), fg = select(any, sg / count, eg),
+            fb = select(any, sb / count, eb);
+    store(out[S::kFr] + i, select(finiteDepth, rr * fr + hr + ur, ur));
+    store(out[S::kFg] + i, select(finiteDepth, rg * fg + hg + ug, ug));
+    store(out[S::kFb] + i, select(finiteDepth, rb * fb + hb + ub, ub));
     if constexpr (Unfiltered) {
-        store(out[S::kUr] + i, refl.r * e.r + g.r + unf.r);
-        store(out[S::kUg] + i, refl.g * e.g + g.g + unf.g);
-        store(out[S::kUb] + i, refl.b * e.b + g.b + unf.b);
+        store(out[S::kUr] + i, rr * er + og + ur);
+        store(out[S::kUg] + i, rg * eg + oh + ug);
+        store(out[S::kUb] + i, rb * eb + ob + ub);
     }
 }
 
-template <bool Glossy, bool Unfiltered>
+template <class V, bool Glossy, bool Unfiltered>
 IGI_LANES void filterRowWith(const Setup& u, ShadedRow& out) {
+    constexpr int kWidth = kLanes<V>;
     const CellOrder& o = u.order;
     const int n = o.cells(), sizeX = u.s.sizeX, half = (sizeX - 1) / 2;
     // Columns whose window is not shifted: x in [half, width - sizeX + half].
@@ -148,42 +143,43 @@ IGI_LANES void filterRowWith(const Setup& u, ShadedRow& out) {
     for (int kx = 0; kx < n; ++kx) {
         for (int k = 0; k < std::min(sizeX, kMaxLanesWindow); ++k)
             offsets[k] = o.offset(kx, k - half);
-        // x = kx + c * n: the lanes c .. c + 7 all unshifted.
+        // x = kx + c * n: the lanes c .. c + kWidth - 1 all unshifted.
         const int cFirst = std::max(0, (firstUnshifted - kx + n - 1) / n);
         const int cLast =
             lastUnshifted >= kx && sizeX <= kMaxLanesWindow ? (lastUnshifted - kx) / n : -1;
-        // Shifted windows one pixel at a time; unshifted ones eight at a time, the last eight
-        // overlapping the ones before rather than leaving pixels over (a lane's result does not
-        // depend on its neighbours', so the pixels written twice get the same bits twice).
+        // Shifted windows one pixel at a time; unshifted ones a vector at a time, the last
+        // vector overlapping the ones before rather than leaving pixels over (a lane's result
+        // does not depend on its neighbours', so the pixels written twice get the same bits).
         const int columns = o.count(kx);
         const bool lanes = cLast - cFirst + 1 >= kWidth;
         for (int c = 0; c < (lanes ? cFirst : columns); ++c) filterPixel(u, kx + c * n, out);
         if (!lanes) continue;
         for (int c = cFirst;; c += kWidth) {
             const int first = std::min(c, cLast - kWidth + 1);
-            filterLanes<Glossy, Unfiltered>(u, offsets, o.start(kx) + first, out);
+            filterLanes<V, Glossy, Unfiltered>(u, offsets, o.start(kx) + first, out);
             if (first + kWidth > cLast) break;
         }
         for (int c = cLast + 1; c < columns; ++c) filterPixel(u, kx + c * n, out);
     }
 }
 
+template <class V>
 IGI_LANES void filterRowBody(const Setup& u, ShadedRow& out) {
     if (u.glossy) {
-        if (u.unfiltered) return filterRowWith<true, true>(u, out);
-        return filterRowWith<true, false>(u, out);
+        if (u.unfiltered) return filterRowWith<V, true, true>(u, out);
+        return filterRowWith<V, true, false>(u, out);
     }
-    if (u.unfiltered) return filterRowWith<false, true>(u, out);
-    filterRowWith<false, false>(u, out);
+    if (u.unfiltered) return filterRowWith<V, false, true>(u, out);
+    filterRowWith<V, false, false>(u, out);
 }
 
 void filterRowBaseline(const Setup& u, ShadedRow& out) {
-    filterRowBody(u, out);
+    filterRowBody<F4>(u, out);
 }
 
 #if IGI_HAS_AVX2_TARGET
 IGI_AVX2 void filterRowAvx2(const Setup& u, ShadedRow& out) {
-    filterRowBody(u, out);
+    filterRowBody<F8>(u, out);
 }
 #endif
 
