@@ -116,6 +116,7 @@ const Image& FrameCompositor::composite(const RowSource& source, bool glossy) {
                                      shown_.pixels.data() + std::size_t(next) * width_);
             }
         }
+        streamedStoresDone();  // the means, before another thread reads them
     });
     if (!accumulate_) return filtered_;
     accumulator_.endFrame();
@@ -133,6 +134,7 @@ const Image& FrameCompositor::composite(const RowSource& source, bool glossy) {
             accumulator_.meanRow(y, after, w->window.data(),
                                  shown_.pixels.data() + std::size_t(y) * width_);
         }
+        streamedStoresDone();
     });
     return shown_;
 }

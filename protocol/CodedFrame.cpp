@@ -280,19 +280,35 @@ void CodedFrame::scatter(const Tile& tile, const TileCodes& codes, std::string_v
     decompressPlanes(codes, planes, what);
     const int columns = tile.columns(n_), rows = tile.rows(m_);
     const std::size_t run = std::size_t(order_.start(tile.kx) + tile.x0 / n_);
-    // Row by row of the tile, a run per byte plane. Planes the tile did not send are not
-    // written: its record says so, and decodeRow makes them empty.
+    // The sent byte planes: where each comes from and goes to. Planes the tile did not send
+    // are not written: its record says so, and decodeRow makes them empty.
+    struct BytePlane {
+        const std::uint8_t* in;
+        std::uint8_t* out;  // at the tile's first row
+    } sent[kBytePlanes];
+    int count = 0;
+    const int y0 = tile.y0 + tile.ky;
+    for (Channel c : {kIrradiance, kReflectance, kNormal, kDepth, kUnfiltered, kGlossy}) {
+        if (!(codes.sent & c)) continue;
+        const int i = bitIndex(c);
+        for (std::uint32_t b = 0; b < kChannelBytes[i]; ++b)
+            sent[count++] = {planes.data() + codes.planeOffset(c) + b * codes.count,
+                             bytes(y0, kFirstBytePlane[i] + int(b)) + run};
+    }
+    // Row by row of the tile, a run per byte plane, asking a few rows ahead for the lines the
+    // runs will write (they are rarely in the cache: a frame is written once).
+    constexpr int kAhead = 4;
+    const std::size_t rowStep = std::size_t(m_) * planeBytes_;
     for (int r = 0; r < rows; ++r) {
-        const int y = tile.y0 + tile.ky + r * m_;
-        for (Channel c : {kIrradiance, kReflectance, kNormal, kDepth, kUnfiltered, kGlossy}) {
-            if (!(codes.sent & c)) continue;
-            const int i = bitIndex(c);
-            const std::uint8_t* in =
-                planes.data() + codes.planeOffset(c) + std::size_t(r) * columns;
-            for (std::uint32_t b = 0; b < kChannelBytes[i]; ++b)
-                copyRun(bytes(y, kFirstBytePlane[i] + int(b)) + run, in + b * codes.count,
-                        std::size_t(columns));
-        }
+        if (r + kAhead < rows)
+            for (int k = 0; k < count; ++k) {
+                const std::uint8_t* ahead = sent[k].out + (r + kAhead) * rowStep;
+                __builtin_prefetch(ahead, 1);
+                __builtin_prefetch(ahead + columns - 1, 1);
+            }
+        for (int k = 0; k < count; ++k)
+            copyRun(sent[k].out + r * rowStep, sent[k].in + std::size_t(r) * columns,
+                    std::size_t(columns));
     }
     if (planes.capacity() > (std::size_t{1} << 20)) std::vector<std::uint8_t>().swap(planes);
     TileRecord& t =

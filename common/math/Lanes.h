@@ -120,6 +120,17 @@ template <class V>
 IGI_LANES Ints<V> finite(V a) {
     return ((Ints<V>)a & splatInt<V>(0x7F800000)) != splatInt<V>(0x7F800000);
 }
+/// Whether every lane of a comparison of doubles holds (the lanes folded onto the first by
+/// shuffles, which both instruction sets do in a few steps).
+template <class M>
+IGI_LANES bool allTrue(M mask) {
+    if constexpr (sizeof(M) == 16) {
+        return (mask & __builtin_shufflevector(mask, mask, 1, 0))[0] != 0;
+    } else {
+        const M half = mask & __builtin_shufflevector(mask, mask, 2, 3, 0, 1);
+        return (half & __builtin_shufflevector(half, half, 1, 0, 3, 2))[0] != 0;
+    }
+}
 /// std::max(a, b) lane by lane: (a < b) ? b : a, so a NaN in b gives a, as the scalar does.
 template <class V>
 IGI_LANES V stdMax(V a, V b) {

@@ -37,5 +37,11 @@ class CellOrder {
 /// glm::vec3 in image order.
 void toImageOrder(const CellOrder& order, const float* r, const float* g, const float* b,
                   glm::vec3* out);
+/// The same, streamed past the cache (an image written whole every frame and rarely read soon
+/// after: the stores need not fetch its lines first). Call streamedStoresDone() before another
+/// thread reads it.
+void toImageOrderStreamed(const CellOrder& order, const float* r, const float* g, const float* b,
+                          glm::vec3* out);
+void streamedStoresDone();
 
 }  // namespace igi

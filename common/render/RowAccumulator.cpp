@@ -212,7 +212,7 @@ IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y
                           narrow(loadDoubles<D>(field) * inv, loadDoubles<D>(field + kHalf) * inv));
                 }
             }
-        return toImageOrder(m.order, mean[0], mean[1], mean[2], out);
+        return toImageOrderStreamed(m.order, mean[0], mean[1], mean[2], out);
     }
     const D tolerance = splat<D>(Accumulator::blurTolerance(frames));
     const int y0 = filterWindowStart(y, m.noiseY, m.height);
@@ -248,14 +248,18 @@ IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y
                 const D d = luminance(f[0], f[1], f[2]) - luminance(u[0], u[1], u[2]);
                 const D allowed = tolerance * loadDoubles<D>(pooled + b * kBlock + j + h * kHalf);
                 const D d2 = d * d;
-                const D w = select(d2 <= allowed, splat<D>(1.0), allowed / d2);
+                // Where every lane keeps the filtered mean (most of a converged image), no
+                // division: its quotients would all be dropped.
+                const auto keep = d2 <= allowed;
+                const D w =
+                    allTrue(keep) ? splat<D>(1.0) : select(keep, splat<D>(1.0), allowed / d2);
                 for (int c = 0; c < 3; ++c) halves[c][h] = w * f[c] + (splat<D>(1.0) - w) * u[c];
             }
             for (int c = 0; c < 3; ++c)
                 store(mean[c] + b * kBlock + j, narrow(halves[c][0], halves[c][1]));
         }
     }
-    toImageOrder(m.order, mean[0], mean[1], mean[2], out);
+    toImageOrderStreamed(m.order, mean[0], mean[1], mean[2], out);
 }
 
 void addRowBaseline(const Layout& l, std::vector<double>& sums, int y, const ShadedRow& row,

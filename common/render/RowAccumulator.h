@@ -29,7 +29,9 @@ class RowAccumulator {
     void endFrame() { ++frames_; }
     /// What addRow wrote for row y, given the sums after `frames` frames.
     void varianceRow(int y, int frames, double* variance, lanes::Isa isa = lanes::bestIsa()) const;
-    /// The mean of row y after `frames` frames, written to `out` (an image row, image order).
+    /// The mean of row y after `frames` frames, written to `out` (an image row, image order)
+    /// with streamed stores: call streamedStoresDone() (CellOrder.h) before another thread reads
+    /// it.
     /// `variance[k]`: the variance of row meanWindow(y).first + k (unused without withdrawBlur
     /// or before two frames).
     void meanRow(int y, int frames, const double* const* variance, glm::vec3* out,
