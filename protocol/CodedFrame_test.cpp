@@ -14,6 +14,7 @@
 #include "Codec.h"
 #include "Compression.h"
 #include "ProtocolError.h"
+#include "Quantize.h"
 #include "TestMessages.h"
 #include "TestTiles.h"
 #include "render/FrameBuffer.h"
@@ -148,6 +149,86 @@ TEST(CodedFrame, ThreadsScatterOneFrameTogether) {
         floats.reuse(s.width, s.height);
         scatterFloats(floats, tiles, wire, s);
         expectSameRows(coded, floats, s, "round " + std::to_string(round));
+    }
+}
+
+// Every code of every table plane, and shared exponents of every exponent, against the
+// per-value decoders (Quantize.h): one tile of 65536 pixels whose pixel i has depth code i,
+// normal code i, sRGB codes i, i >> 8 and i * 7, and a random shared-exponent word, under
+// references that take the float and the double paths.
+TEST(CodedFrame, DecodesEveryCodeAsThePerValueDecoders) {
+    constexpr int kSide = 256, kPixels = kSide * kSide;
+    const Shape s{kSide, kSide, 1, 1, kSide};
+    const Tile tile = makeTiles(s.width, s.height, s.n, s.m, s.tileSize)[0];
+    ASSERT_EQ(tile.pixelCount(1, 1), kPixels);
+    std::mt19937 rng(23);
+    std::vector<std::uint32_t> irradiance(kPixels), unfiltered(kPixels);
+    for (auto& w : irradiance) w = std::uint32_t(rng());
+    for (auto& w : unfiltered) w = std::uint32_t(rng());
+    // The planes as writeTileChannels lays them out: byte b of every pixel, then byte b + 1.
+    std::vector<std::uint8_t> raw;
+    auto put = [&](auto code, int bytes) {
+        for (int b = 0; b < bytes; ++b)
+            for (int i = 0; i < kPixels; ++i) raw.push_back(std::uint8_t(code(i) >> (8 * b)));
+    };
+    put([&](int i) { return irradiance[std::size_t(i)]; }, 4);
+    put(
+        [](int i) {
+            return std::uint32_t(i & 0xFF) | std::uint32_t((i >> 8) & 0xFF) << 8 |
+                   std::uint32_t((i * 7) & 0xFF) << 16;
+        },
+        3);
+    put([](int i) { return std::uint32_t(i); }, 2);  // normal u | v << 8
+    put([](int i) { return std::uint32_t(i); }, 2);  // depth
+    put([&](int i) { return unfiltered[std::size_t(i)]; }, 4);
+    const auto compressed = zstdCompress(raw, 1);
+    for (const float scale : {1.0f, 3.5e-30f, 2.5e38f}) {
+        TileCodes codes;
+        codes.count = kPixels;
+        codes.planes = codes.sent = kIrradiance | kReflectance | kNormal | kDepth | kUnfiltered;
+        codes.irradianceScale = scale, codes.unfilteredScale = 1.0f / (scale + 1.0f);
+        codes.depthMin = scale;
+        codes.compressed = compressed;
+        ASSERT_EQ(codes.rawSize(), raw.size());
+        CodedFrame coded;
+        coded.reuse(s.width, s.height, s.n, s.m, s.tileSize);
+        coded.scatter(tile, codes);
+        std::vector<lanes::Isa> isas = {lanes::Isa::kBaseline};
+        if (lanes::hasAvx2()) isas.push_back(lanes::Isa::kAvx2);
+        FrameRow row;
+        for (const lanes::Isa isa : isas)
+            for (int y = 0; y < kSide; ++y) {
+                coded.decodeRow(y, row, isa);
+                for (int x = 0; x < kSide; ++x) {
+                    const int i = y * kSide + x;
+                    const glm::vec3 e = decodeSharedExponent(irradiance[std::size_t(i)], scale);
+                    const glm::vec3 u =
+                        decodeSharedExponent(unfiltered[std::size_t(i)], codes.unfilteredScale);
+                    const glm::vec3 n = decodeOctNormal({std::uint8_t(i), std::uint8_t(i >> 8)});
+                    const float expected[] = {decodeLogDepth(std::uint16_t(i), scale),
+                                              n.x,
+                                              n.y,
+                                              n.z,
+                                              e.x,
+                                              e.y,
+                                              e.z,
+                                              0,
+                                              0,
+                                              0,
+                                              decodeSrgb8(std::uint8_t(i)),
+                                              decodeSrgb8(std::uint8_t(i >> 8)),
+                                              decodeSrgb8(std::uint8_t(i * 7)),
+                                              u.x,
+                                              u.y,
+                                              u.z};
+                    for (int p = 0; p <= FrameRow::kUb; ++p) {
+                        if (p >= FrameRow::kGr && p <= FrameRow::kGb) continue;
+                        ASSERT_EQ(std::memcmp(&row[p][x], &expected[p], sizeof(float)), 0)
+                            << "scale " << scale << " isa " << int(isa) << " pixel " << i
+                            << " plane " << p << ": " << row[p][x] << " vs " << expected[p];
+                    }
+                }
+            }
     }
 }
 

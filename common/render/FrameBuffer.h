@@ -11,8 +11,9 @@
 
 namespace igi {
 
-/// The planes of a whole frame as the master assembles them from tile results; the input of
-/// the discontinuity buffer.
+/// The planes of a whole frame as floats, assembled from tile results; the input of the
+/// discontinuity buffer for tests and tools (the master keeps the tiles' wire codes instead and
+/// dequantizes them row by row, proto::CodedFrame, to the same floats).
 struct FrameBuffer {
     int width = 0;
     int height = 0;
@@ -41,8 +42,8 @@ struct FrameBuffer {
     /// counts as live: the caller may fill them directly.
     void reset(int w, int h);
 
-    /// Makes the buffer ready for a frame of which every pixel will be scattered (the master's
-    /// frames: a frame is composited only once all its tiles are in). Memory of the same size
+    /// Makes the buffer ready for a frame of which every pixel will be scattered (a frame is
+    /// composited only once all its tiles are in). Memory of the same size
     /// is kept as it is, without clearing: each pixel is overwritten by its tile, and clearing
     /// 76 bytes a pixel every frame costs the master more than filtering them. Planes no tile
     /// has sent stay empty and are neither written nor read.
