@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "Codec.h"
+#include "CodedFrame.h"
 #include "CompressedParts.h"
 
 namespace {
@@ -69,14 +70,39 @@ void checkReencodes(const Message& message, Bytes received) {
         bug("a decoded message encodes to other bytes than were received", type);
 }
 
+/// The master decodes a TileResult its own way, as far as the codes, which it decompresses
+/// into its frame and dequantizes row by row (CodedFrame.h): it must refuse exactly what
+/// decodeMessage refuses, and read what it accepts without a sanitizer report.
+void checkMasterTilePath(const Header& header, Bytes payload, bool accepted) {
+    if (header.type != MessageType::TileResult) return;
+    bool refused = false;
+    try {
+        const TileResultCodes result = decodeTileResultCodes(header, payload);
+        const std::uint32_t count = result.codes.count;
+        if (count == 0 || count > 4096) return;  // a one-row frame of the tile's pixels
+        const igi::Tile tile{0, 0, int(count), 1, 0, 0};
+        CodedFrame frame;
+        frame.reuse(int(count), 1, 1, 1, int(count));
+        frame.scatter(tile, result.codes);
+        igi::FrameRow row;
+        frame.decodeRow(0, row);
+    } catch (const ProtocolError&) {
+        refused = true;
+    }
+    if (refused == accepted)
+        bug("the master's tile decoder and decodeMessage disagree", header.type);
+}
+
 /// Decodes `payload` as a message of the header's type; false when it is refused.
 bool tryDecode(const Header& header, Bytes payload) {
     Message message;
     try {
         message = decodeMessage(header, payload);
     } catch (const ProtocolError&) {
+        checkMasterTilePath(header, payload, false);
         return false;
     }
+    checkMasterTilePath(header, payload, true);
     checkReencodes(message, payload);
     return true;
 }
