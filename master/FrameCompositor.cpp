@@ -9,6 +9,14 @@
 namespace igi {
 namespace {
 
+/// One block for one thread: nothing to balance, and no rows read across a block's edge
+/// (decoded twice, averaged in a second sweep). Four a thread for more: enough to balance them,
+/// few enough that those rows stay a small share.
+int rowsPerBlock(int height, int threads) {
+    const int blocks = threads > 1 ? 4 * threads : 1;
+    return std::max(16, (height + blocks - 1) / blocks);
+}
+
 bool withdrawBlur(const RenderSettings& s) {
     return s.accumulate && s.progressiveFilter;
 }
@@ -44,9 +52,7 @@ FrameCompositor::FrameCompositor(int width, int height, const RenderSettings& se
               settings.filterDepthThreshold, settings.filterNormalThreshold},
       pool_(pool),
       order_(width, settings.interleaveX),
-      // Four blocks a thread: enough to balance them, few enough that the rows read across a
-      // block's edges (decoded twice, averaged in a second sweep) stay a small share.
-      rowsPerBlock_(std::max(16, (height + 4 * int(pool.size()) - 1) / (4 * int(pool.size())))),
+      rowsPerBlock_(rowsPerBlock(height, int(pool.size()))),
       filtered_(width, height),
       shown_(accumulate_ ? width : 0, accumulate_ ? height : 0) {
     if (filter_.sizeY > FilterWindow::kMaxRows)
