@@ -4,6 +4,7 @@
 #include <bit>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -277,7 +278,6 @@ void CodedFrame::scatter(const Tile& tile, const TileCodes& codes, std::string_v
                             " pixels for a tile of " + std::to_string(tile.pixelCount(n_, m_)));
     std::vector<std::uint8_t>& planes = threadPlanes();
     planes.resize(codes.rawSize());
-    decompressPlanes(codes, planes, what);
     const int columns = tile.columns(n_), rows = tile.rows(m_);
     const std::size_t run = std::size_t(order_.start(tile.kx) + tile.x0 / n_);
     // The sent byte planes: where each comes from and goes to. Planes the tile did not send
@@ -295,17 +295,19 @@ void CodedFrame::scatter(const Tile& tile, const TileCodes& codes, std::string_v
             sent[count++] = {planes.data() + codes.planeOffset(c) + b * codes.count,
                              bytes(y0, kFirstBytePlane[i] + int(b)) + run};
     }
-    // Row by row of the tile, a run per byte plane, asking a few rows ahead for the lines the
-    // runs will write (they are rarely in the cache: a frame is written once).
-    constexpr int kAhead = 4;
+    // The lines the runs will write are rarely in the cache (a frame is written once): asked
+    // for now, they arrive while zstd decompresses the tile.
     const std::size_t rowStep = std::size_t(m_) * planeBytes_;
+    for (int r = 0; r < rows; ++r)
+        for (int k = 0; k < count; ++k) {
+            const std::uint8_t* at = sent[k].out + r * rowStep;
+            __builtin_prefetch(at, 1, 2);
+            if ((reinterpret_cast<std::uintptr_t>(at) & 63) + std::size_t(columns) > 64)
+                __builtin_prefetch(at + columns - 1, 1, 2);
+        }
+    decompressPlanes(codes, planes, what);
+    // Row by row of the tile, a run per byte plane.
     for (int r = 0; r < rows; ++r) {
-        if (r + kAhead < rows)
-            for (int k = 0; k < count; ++k) {
-                const std::uint8_t* ahead = sent[k].out + (r + kAhead) * rowStep;
-                __builtin_prefetch(ahead, 1);
-                __builtin_prefetch(ahead + columns - 1, 1);
-            }
         for (int k = 0; k < count; ++k)
             copyRun(sent[k].out + r * rowStep, sent[k].in + std::size_t(r) * columns,
                     std::size_t(columns));
