@@ -31,13 +31,15 @@ struct Workspace {
     std::vector<const double*> window;  ///< the variance rows of one mean
 };
 
+/// The calling thread's workspace, with at least the rows asked for. It only grows: rings of
+/// any size at least the window's hold each of its rows in a slot of its own.
 Workspace& workspace(int filterRows, int noiseRows, std::size_t varianceEntries) {
     thread_local Workspace w;
-    w.rows.resize(std::size_t(filterRows));
+    if (w.rows.size() < std::size_t(filterRows)) w.rows.resize(std::size_t(filterRows));
     for (FrameRow& r : w.rows) r.y = -1;  // a row of another frame is not this frame's
-    w.variance.resize(std::size_t(noiseRows));
+    if (w.variance.size() < std::size_t(noiseRows)) w.variance.resize(std::size_t(noiseRows));
     for (auto& v : w.variance) v.resize(varianceEntries);
-    w.window.resize(std::size_t(noiseRows));
+    if (w.window.size() < std::size_t(noiseRows)) w.window.resize(std::size_t(noiseRows));
     return w;
 }
 
