@@ -4,7 +4,8 @@
 // Clang vector extensions over a vector type V: F4, four floats, which any x86-64 runs as SSE2,
 // or F8, eight floats, which functions marked IGI_AVX2 run as AVX2 where the processor has it
 // (hasAvx2). A kernel is a template on V, instantiated twice; the build flags stay those of any
-// x86-64 (no -march=native).
+// x86-64 (no -march=native). F8 belongs inside IGI_AVX2 functions only: under GCC its helpers
+// use AVX instructions.
 //
 // Every operation is IEEE-exact per lane, as the scalar code it replaces: the avx2 target
 // does not enable FMA (and igi_common and igi_protocol build with -ffp-contract=off besides),
@@ -59,14 +60,10 @@ inline Isa bestIsa() {
 /// Floats per vector.
 template <class V>
 constexpr int kLanes = int(sizeof(V) / sizeof(float));
-/// What comparing two V gives: lanes of all ones or all zeros.
-template <class V>
-using Mask = decltype(V{} < V{});
-/// The 32-bit integers of V's lanes.
+/// The 32-bit integers of V's lanes (also what comparing two V gives: lanes of all ones or
+/// all zeros).
 template <class V>
 using Ints = std::conditional_t<sizeof(V) == 16, I4, I8>;
-template <class V>
-using Uints = std::conditional_t<sizeof(V) == 16, U4, U8>;
 /// Half of V's lanes as doubles.
 template <class V>
 using Half = std::conditional_t<sizeof(V) == 16, D2, D4>;
