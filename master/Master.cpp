@@ -374,8 +374,9 @@ void Master::onTileResult(Session& s, const proto::Header& header,
             std::string error;
             proto::TileStats tileStats;
             try {
-                // Decompressed straight into the frame, still quantized: the compositor
-                // dequantizes the codes as it filters them (CodedFrame.h).
+                // Decompressed and copied into the frame still quantized: the compositor
+                // dequantizes the codes as it filters them (CodedFrame.h). A result refused
+                // here has written nothing.
                 const auto result = proto::decodeTileResultCodes(header, payload);
                 record->buffer.scatter(tile, result.codes);  // checks the pixel count first
                 tileStats = result.stats;
