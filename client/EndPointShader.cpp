@@ -22,47 +22,6 @@ float residualWeight(const ConnectionBound* residual, float sharpness) {
     return residual ? 1.0f - residual->kept(sharpness) : 1.0f;
 }
 
-// Shadow rays from one origin in packets of up to 8; each unblocked ray adds its two
-// contributions, in the order they were queued (the sum does not depend on the packets).
-class ShadowBatch {
-  public:
-    ShadowBatch(const TraceableScene& scene, glm::vec3 origin, RayCounters& counters)
-        : scene_(scene), origin_(origin), counters_(counters) {}
-
-    void add(glm::vec3 direction, float distance, glm::vec3 irradiance, glm::vec3 glossy,
-             glm::vec3& irradianceSum, glm::vec3& glossySum) {
-        directions_[pending_] = direction;
-        tfar_[pending_] = distance * (1.0f - kVplShadowShrink);
-        irradiance_[pending_] = irradiance;
-        glossy_[pending_] = glossy;
-        if (++pending_ == kPacket) flush(irradianceSum, glossySum);
-    }
-
-    void flush(glm::vec3& irradianceSum, glm::vec3& glossySum) {
-        if (pending_ == 0) return;
-        if (pending_ == 1)
-            blocked_[0] = scene_.occluded(origin_, directions_[0], tfar_[0], counters_);
-        else
-            scene_.occluded8(origin_, directions_, tfar_, pending_, blocked_, counters_);
-        for (int i = 0; i < pending_; ++i) {
-            if (blocked_[i]) continue;
-            irradianceSum += irradiance_[i];
-            glossySum += glossy_[i];
-        }
-        pending_ = 0;
-    }
-
-  private:
-    static constexpr int kPacket = TraceableScene::kPacket;
-    const TraceableScene& scene_;
-    glm::vec3 origin_;
-    RayCounters& counters_;
-    glm::vec3 directions_[kPacket], irradiance_[kPacket], glossy_[kPacket];
-    float tfar_[kPacket];
-    bool blocked_[kPacket];
-    int pending_ = 0;
-};
-
 float maxSharpnessOf(const std::vector<Material>& materials) {
     float s = 1.0f;
     for (const Material& m : materials)
@@ -82,36 +41,72 @@ EndPointShader::EndPointShader(const TraceableScene& scene, const Lights& lights
       compensate_(settings.clampCompensation == ClampCompensation::KolligKeller),
       maxSharpness_(maxSharpnessOf(scene.materials())) {}
 
+ShadowQueue& EndPointShader::scratchQueue(int depth) {
+    // One queue per depth and thread: a point's continuation shades the next point (one level
+    // deeper) before the point's own queue is summed.
+    thread_local ShadowQueue queues[kMaxDepth + 1];
+    ShadowQueue& q = queues[std::clamp(depth, 0, kMaxDepth)];
+    q.clear();
+    return q;
+}
+
 EndPointLight EndPointShader::shadeAt(const ShadingPoint& x, const LightingSet& set,
                                       PathRandom* random, int depth,
                                       const ConnectionBound* residual,
                                       RayCounters& counters) const {
-    Sums sums;
+    ShadowQueue& queue = scratchQueue(depth);
+    const Pending pending = queueAt(x, set, random != nullptr, depth, residual, queue);
+    queue.trace(scene_, counters);
+    return finishAt(x, set, random, depth, residual, pending, queue, counters);
+}
+
+EndPointShader::Pending EndPointShader::queueAt(const ShadingPoint& x, const LightingSet& set,
+                                                bool withRandom, int depth,
+                                                const ConnectionBound* residual,
+                                                ShadowQueue& queue) const {
+    Pending pending;
     const bool glossy = x.brdf.hasGlossy();
-    const bool continuation = random != nullptr && depth < kMaxDepth &&
-                              (glossy || (compensate_ && set.compensationShare > 0 &&
-                                          set.minDistance2 > 0 && set.indirectLight));
-    gatherVpls(x, set, continuation && glossy, residual, sums, counters);
+    pending.continuation = withRandom && depth < kMaxDepth &&
+                           (glossy || (compensate_ && set.compensationShare > 0 &&
+                                       set.minDistance2 > 0 && set.indirectLight));
+    pending.point = queue.beginPoint(scene_.offsetOrigin(x.position, x.faceNormal));
+    pending.indirectFromMethod =
+        queueConnections(x, set, pending.continuation && glossy, residual, queue);
+    return pending;
+}
+
+EndPointLight EndPointShader::finishAt(const ShadingPoint& x, const LightingSet& set,
+                                       PathRandom* random, int depth,
+                                       const ConnectionBound* residual, const Pending& pending,
+                                       const ShadowQueue& queue, RayCounters& counters) const {
+    Sums sums;
+    queue.sum(pending.point, sums.irradiance, sums.glossy);
+    // Lambertian indirect light from the method's records (instant caching, photon map).
+    if (pending.indirectFromMethod)
+        sums.irradiance += set.indirectIrradiance->irradiance(x.position, x.faceNormal, counters);
     // Light that came through mirrors and glass: the photons carry it to the Lambertian lobe;
     // to the glossy lobe only when no continuation looks at the mirrors and glass itself.
-    gatherPhotons(x, set, glossy && !continuation, residual, sums);
-    if (continuation) continueFrom(x, set, *random, depth, residual, sums, counters);
+    const bool glossy = x.brdf.hasGlossy();
+    gatherPhotons(x, set, glossy && !pending.continuation, residual, sums);
+    if (pending.continuation) continueFrom(x, set, *random, depth, residual, sums, counters);
     return {sums.irradiance * kInvPi, sums.glossy};
 }
 
-void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
-                                bool misWithContinuation, const ConnectionBound* residual,
-                                Sums& sums, RayCounters& counters) const {
+bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& set,
+                                      bool misWithContinuation, const ConnectionBound* residual,
+                                      ShadowQueue& queue) const {
     const SurfaceBrdf& b = x.brdf;
     const bool glossy = b.hasGlossy();
     const glm::vec3 n = b.normal;
     const glm::vec3 origin = scene_.offsetOrigin(x.position, x.faceNormal);
-    ShadowBatch batch(scene_, origin, counters);
     const float lightSamples = float(directSamples_);
+    auto connect = [&](std::uint32_t target, glm::vec3 w, float d, glm::vec3 e, glm::vec3 g) {
+        queue.add(target, w, d * (1.0f - kVplShadowShrink), e, g);
+    };
 
     // Direct light: not bounded (its singularity is the light's own size, and for a glossy
     // lobe the MIS weight takes the light samples out where BRDF sampling is better).
-    auto addDirect = [&](const Vpl& v) {
+    auto addDirect = [&](const Vpl& v, std::uint32_t target) {
         const glm::vec3 toLight = v.position - origin;
         const float d2 = glm::dot(toLight, toLight);
         if (!(d2 > 0)) return;
@@ -132,14 +127,15 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
                 mis = powerHeuristic(lightSamples * v.areaPdf * d2 / cosY, b.pdf(w, x.mirror));
             g = e * b.glossy(cosAlpha) * mis;
         }
-        batch.add(w, d, e, g, sums.irradiance, sums.glossy);
+        connect(target, w, d, e, g);
     };
-    for (const Vpl& v : set.direct) addDirect(v);
+    for (std::size_t i = 0; i < set.direct.size(); ++i) addDirect(set.direct[i], std::uint32_t(i));
     // With a light tree the point turns the set's numbers into light samples of its own.
     LightTree::Memo memo;
     for (const glm::vec3& u : set.directNumbers) {
         const LightSample s = lights_.sampleAt(x.position, n, u.x, {u.y, u.z}, &memo);
-        if (s.pdf > 0) addDirect(directLightVpl(s, scene_, directSamples_));
+        if (s.pdf > 0)
+            addDirect(directLightVpl(s, scene_, directSamples_), ShadowQueue::kOwnTarget);
     }
 
     // Indirect light: every connection bounded, through the BRDFs at both ends; at a
@@ -147,13 +143,13 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
     const bool lambertian = !glossy && residual == nullptr;
     // A glossy point's Lambertian lobe too, where the method has no VPLs for its glossy lobe
     // (that lobe's continuation ray takes the surfaces' radiance from the method instead).
-    if (residual == nullptr && set.indirectIrradiance && (!glossy || set.indirect.empty())) {
-        batch.flush(sums.irradiance, sums.glossy);
-        sums.irradiance += set.indirectIrradiance->irradiance(x.position, x.faceNormal, counters);
-        return;
-    }
+    if (residual == nullptr && set.indirectIrradiance && (!glossy || set.indirect.empty()))
+        return true;
     const bool clamp = set.boundShape == BoundShape::Clamp;
-    for (const Vpl& v : set.indirect) {
+    const auto first = std::uint32_t(set.direct.size());
+    for (std::size_t j = 0; j < set.indirect.size(); ++j) {
+        const Vpl& v = set.indirect[j];
+        const std::uint32_t target = first + std::uint32_t(j);
         const glm::vec3 toLight = v.position - origin;
         const float d2 = glm::dot(toLight, toLight);
         if (!(d2 > 0)) continue;
@@ -167,7 +163,7 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
             // Lambertian at both ends (sharpness 1, within any budget): the paper's clamp,
             // G <= cos cos / dmin^2. The common case, kept apart for speed.
             const float g = cosX * cosY / std::max(d2, set.minDistance2);
-            batch.add(w, d, v.power * g, glm::vec3(0.0f), sums.irradiance, sums.glossy);
+            connect(target, w, d, v.power * g, glm::vec3(0.0f));
             continue;
         }
         const auto [intensity, sharpnessY] = v.towards(w);
@@ -179,9 +175,9 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
         if (!(r > 0)) continue;
         const glm::vec3 e = intensity * (cosX * cosY / d2 * kept * r);
         const glm::vec3 g = glossy ? e * b.glossy(cosAlpha) : glm::vec3(0.0f);
-        batch.add(w, d, e, g, sums.irradiance, sums.glossy);
+        connect(target, w, d, e, g);
     }
-    batch.flush(sums.irradiance, sums.glossy);
+    return false;
 }
 
 void EndPointShader::gatherPhotons(const ShadingPoint& x, const LightingSet& set, bool withGlossy,

@@ -125,10 +125,16 @@ void TileRenderer::renderChunk(TileJob& job, int begin, int end) {
             std::uint32_t(set->direct.size() + set->directNumbers.size() + set->indirect.size());
         local.causticPhotons =
             std::uint32_t(set->caustics.photons().size() + set->indirectCaustics.photons().size());
+        IgiIntegrator::Pixel pixels[kChunkPixels];
+        PixelResult results[kChunkPixels];
         for (int i = begin; i < end; ++i) {
             const int x = job.tile.pixelX(i, n), y = job.tile.pixelY(i, n, m);
-            PixelResult r =
-                igi_.shade(x, y, std::uint32_t(y * image_.width + x), job.frame, *set, counters);
+            pixels[i - begin] = {x, y, std::uint32_t(y * image_.width + x)};
+        }
+        igi_.shade(pixels, end - begin, job.frame, *set, results, counters);
+        for (int i = begin; i < end; ++i) {
+            const int x = pixels[i - begin].x, y = pixels[i - begin].y;
+            PixelResult& r = results[i - begin];
             if (set->screenCaustics && r.firstHit) {
                 const ScreenCaustics& c = *set->screenCaustics;
                 r.irradiance +=
