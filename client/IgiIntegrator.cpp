@@ -58,7 +58,11 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
     paths.resize(std::size_t(count));
     for (int i = 0; i < count; ++i) {
         PixelPath& p = paths[std::size_t(i)];
-        p = PixelPath{};
+        // Reset field by field: a whole PixelPath{} would copy its three end points' storage.
+        for (auto& e : p.ends) e.reset();
+        p.found = false;
+        p.primary = -1;
+        p.nextNumber = 2;
         p.sampler = PixelSampler(settings_.seed, SampleStream::EyePath, pixels[i].index, frame);
         p.direction = camera_.direction(float(pixels[i].x) + p.sampler.get(0),
                                         float(pixels[i].y) + p.sampler.get(1));
