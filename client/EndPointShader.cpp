@@ -147,24 +147,27 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
         return true;
     const bool clamp = set.boundShape == BoundShape::Clamp;
     const auto first = std::uint32_t(set.direct.size());
-    for (std::size_t j = 0; j < set.indirect.size(); ++j) {
+    // VPL j's connection, its contribution scaled by `scale` (a chosen VPL's weight).
+    auto connectIndirect = [&](std::size_t j, float scale) {
         const Vpl& v = set.indirect[j];
         const std::uint32_t target = first + std::uint32_t(j);
         const glm::vec3 toLight = v.position - origin;
         const float d2 = glm::dot(toLight, toLight);
-        if (!(d2 > 0)) continue;
+        if (!(d2 > 0)) return;
         const float d = std::sqrt(d2);
         const glm::vec3 w = toLight / d;
         const float cosX = glm::dot(n, w);
-        if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) continue;
+        if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) return;
         const float cosY = -glm::dot(v.normal, w);
-        if (cosY <= 0) continue;
+        if (cosY <= 0) return;
         if (lambertian && clamp && !v.glossy()) {
             // Lambertian at both ends (sharpness 1, within any budget): the paper's clamp,
             // G <= cos cos / dmin^2. The common case, kept apart for speed.
             const float g = cosX * cosY / std::max(d2, set.minDistance2);
-            connect(target, w, d, v.power * g, glm::vec3(0.0f));
-            continue;
+            glm::vec3 e = v.power * g;
+            if (scale != 1.0f) e *= scale;
+            connect(target, w, d, e, glm::vec3(0.0f));
+            return;
         }
         const auto [intensity, sharpnessY] = v.towards(w);
         const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
@@ -172,11 +175,22 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
         const float kept = keptFraction(d2, set.minDistance2, set.sharpnessBudget, sharpnessX,
                                         sharpnessY, set.boundShape);
         const float r = residualWeight(residual, sharpnessX);
-        if (!(r > 0)) continue;
-        const glm::vec3 e = intensity * (cosX * cosY / d2 * kept * r);
+        if (!(r > 0)) return;
+        glm::vec3 e = intensity * (cosX * cosY / d2 * kept * r);
+        if (scale != 1.0f) e *= scale;
         const glm::vec3 g = glossy ? e * b.glossy(cosAlpha) : glm::vec3(0.0f);
         connect(target, w, d, e, g);
+    };
+    if (!set.vplChoice.active(set.indirect.size())) {
+        for (std::size_t j = 0; j < set.indirect.size(); ++j) connectIndirect(j, 1.0f);
+        return false;
     }
+    // A few of the pool's VPLs, chosen by what each could give this point.
+    thread_local std::vector<VplChoice::Pick> picks;
+    picks.resize(set.vplChoice.perPoint);
+    const std::uint32_t chosen =
+        set.vplChoice.choose(origin, n, x.faceNormal, set.minDistance2, picks.data());
+    for (std::uint32_t k = 0; k < chosen; ++k) connectIndirect(picks[k].index, picks[k].scale);
     return false;
 }
 
