@@ -9,6 +9,7 @@
 #include "ConnectionBound.h"
 #include "DeltaChain.h"
 #include "math/Color.h"
+#include "math/Float4.h"
 #include "math/Warp.h"
 
 namespace igi {
@@ -146,43 +147,12 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
     if (residual == nullptr && set.indirectIrradiance && (!glossy || set.indirect.empty()))
         return true;
     const bool clamp = set.boundShape == BoundShape::Clamp;
-    const auto first = std::uint32_t(set.direct.size());
-    // VPL j's connection, its contribution scaled by `scale` (a chosen VPL's weight).
-    auto connectIndirect = [&](std::size_t j, float scale) {
-        const Vpl& v = set.indirect[j];
-        const std::uint32_t target = first + std::uint32_t(j);
-        const glm::vec3 toLight = v.position - origin;
-        const float d2 = glm::dot(toLight, toLight);
-        if (!(d2 > 0)) return;
-        const float d = std::sqrt(d2);
-        const glm::vec3 w = toLight / d;
-        const float cosX = glm::dot(n, w);
-        if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) return;
-        const float cosY = -glm::dot(v.normal, w);
-        if (cosY <= 0) return;
-        if (lambertian && clamp && !v.glossy()) {
-            // Lambertian at both ends (sharpness 1, within any budget): the paper's clamp,
-            // G <= cos cos / dmin^2. The common case, kept apart for speed.
-            const float g = cosX * cosY / std::max(d2, set.minDistance2);
-            glm::vec3 e = v.power * g;
-            if (scale != 1.0f) e *= scale;
-            connect(target, w, d, e, glm::vec3(0.0f));
-            return;
-        }
-        const auto [intensity, sharpnessY] = v.towards(w);
-        const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
-        const float sharpnessX = glossy ? b.sharpness(cosAlpha) : b.diffuseShare;
-        const float kept = keptFraction(d2, set.minDistance2, set.sharpnessBudget, sharpnessX,
-                                        sharpnessY, set.boundShape);
-        const float r = residualWeight(residual, sharpnessX);
-        if (!(r > 0)) return;
-        glm::vec3 e = intensity * (cosX * cosY / d2 * kept * r);
-        if (scale != 1.0f) e *= scale;
-        const glm::vec3 g = glossy ? e * b.glossy(cosAlpha) : glm::vec3(0.0f);
-        connect(target, w, d, e, g);
-    };
     if (!set.vplChoice.active(set.indirect.size())) {
-        for (std::size_t j = 0; j < set.indirect.size(); ++j) connectIndirect(j, 1.0f);
+        if (lambertian && clamp && set.vplChoice.laidOut(set.indirect.size()))
+            connectLambertian(x, set, origin, queue);
+        else
+            for (std::size_t j = 0; j < set.indirect.size(); ++j)
+                connectVpl(x, set, j, 1.0f, origin, residual, queue);
         return false;
     }
     // A few of the pool's VPLs, chosen by what each could give this point.
@@ -190,8 +160,90 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
     picks.resize(set.vplChoice.perPoint);
     const std::uint32_t chosen =
         set.vplChoice.choose(origin, n, x.faceNormal, set.minDistance2, picks.data());
-    for (std::uint32_t k = 0; k < chosen; ++k) connectIndirect(picks[k].index, picks[k].scale);
+    for (std::uint32_t k = 0; k < chosen; ++k)
+        connectVpl(x, set, picks[k].index, picks[k].scale, origin, residual, queue);
     return false;
+}
+
+void EndPointShader::connectVpl(const ShadingPoint& x, const LightingSet& set, std::size_t j,
+                                float scale, glm::vec3 origin, const ConnectionBound* residual,
+                                ShadowQueue& queue) const {
+    const SurfaceBrdf& b = x.brdf;
+    const bool glossy = b.hasGlossy();
+    const glm::vec3 n = b.normal;
+    const Vpl& v = set.indirect[j];
+    const auto target = std::uint32_t(set.direct.size() + j);
+    auto connect = [&](glm::vec3 w, float d, glm::vec3 e, glm::vec3 g) {
+        queue.add(target, w, d * (1.0f - kVplShadowShrink), e, g);
+    };
+    const glm::vec3 toLight = v.position - origin;
+    const float d2 = glm::dot(toLight, toLight);
+    if (!(d2 > 0)) return;
+    const float d = std::sqrt(d2);
+    const glm::vec3 w = toLight / d;
+    const float cosX = glm::dot(n, w);
+    if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) return;
+    const float cosY = -glm::dot(v.normal, w);
+    if (cosY <= 0) return;
+    if (!glossy && residual == nullptr && set.boundShape == BoundShape::Clamp && !v.glossy()) {
+        // Lambertian at both ends (sharpness 1, within any budget): the paper's clamp,
+        // G <= cos cos / dmin^2. The common case, kept apart for speed.
+        const float g = cosX * cosY / std::max(d2, set.minDistance2);
+        glm::vec3 e = v.power * g;
+        if (scale != 1.0f) e *= scale;
+        connect(w, d, e, glm::vec3(0.0f));
+        return;
+    }
+    const auto [intensity, sharpnessY] = v.towards(w);
+    const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
+    const float sharpnessX = glossy ? b.sharpness(cosAlpha) : b.diffuseShare;
+    const float kept = keptFraction(d2, set.minDistance2, set.sharpnessBudget, sharpnessX,
+                                    sharpnessY, set.boundShape);
+    const float r = residualWeight(residual, sharpnessX);
+    if (!(r > 0)) return;
+    glm::vec3 e = intensity * (cosX * cosY / d2 * kept * r);
+    if (scale != 1.0f) e *= scale;
+    const glm::vec3 g = glossy ? e * b.glossy(cosAlpha) : glm::vec3(0.0f);
+    connect(w, d, e, g);
+}
+
+void EndPointShader::connectLambertian(const ShadingPoint& x, const LightingSet& set,
+                                       glm::vec3 origin, ShadowQueue& queue) const {
+    // Every VPL of the set, four at a time: lane by lane the arithmetic of the scalar
+    // connection in queueConnections (glm's dot is (x x' + y y') + z z', -a is 0 - a where it
+    // passes), so that every value has the same bits; the tests stay scalar, as there. A
+    // connection is mostly rejected by its cosines, after a square root and a division whose
+    // latencies the four lanes share.
+    const VplChoice& l = set.vplChoice;
+    const glm::vec3 n = x.brdf.normal, f = x.faceNormal;
+    const Float4 ox(origin.x), oy(origin.y), oz(origin.z), m2(set.minDistance2), zero(0.0f);
+    const auto first = std::uint32_t(set.direct.size());
+    const std::size_t count = set.indirect.size();
+    for (std::size_t j = 0; j < count; j += 4) {
+        const Float4 tx = Float4::load(&l.px[j]) - ox, ty = Float4::load(&l.py[j]) - oy,
+                     tz = Float4::load(&l.pz[j]) - oz;
+        const Float4 d2 = tx * tx + ty * ty + tz * tz;
+        const Float4 d = sqrt(d2);
+        const Float4 wx = tx / d, wy = ty / d, wz = tz / d;
+        const Float4 cosX = Float4(n.x) * wx + Float4(n.y) * wy + Float4(n.z) * wz;
+        const Float4 face = Float4(f.x) * wx + Float4(f.y) * wy + Float4(f.z) * wz;
+        const Float4 cosY = zero - (Float4::load(&l.nx[j]) * wx + Float4::load(&l.ny[j]) * wy +
+                                    Float4::load(&l.nz[j]) * wz);
+        const Float4 g = cosX * cosY / max(d2, m2);
+        float v[9][4];
+        d2.store(v[0]), d.store(v[1]), wx.store(v[2]), wy.store(v[3]), wz.store(v[4]);
+        cosX.store(v[5]), face.store(v[6]), cosY.store(v[7]), g.store(v[8]);
+        for (std::size_t i = 0; i < 4 && j + i < count; ++i) {
+            const Vpl& vpl = set.indirect[j + i];
+            if (vpl.glossy()) {  // not Lambertian at this end: the general connection
+                connectVpl(x, set, j + i, 1.0f, origin, nullptr, queue);
+                continue;
+            }
+            if (!(v[0][i] > 0) || v[5][i] <= 0 || v[6][i] <= 0 || v[7][i] <= 0) continue;
+            queue.add(first + std::uint32_t(j + i), glm::vec3(v[2][i], v[3][i], v[4][i]),
+                      v[1][i] * (1.0f - kVplShadowShrink), vpl.power * v[8][i], glm::vec3(0.0f));
+        }
+    }
 }
 
 void EndPointShader::gatherPhotons(const ShadingPoint& x, const LightingSet& set, bool withGlossy,

@@ -107,6 +107,14 @@ class EndPointShader {
     /// records give the Lambertian indirect light instead of the VPLs.
     bool queueConnections(const ShadingPoint& x, const LightingSet& set, bool misWithContinuation,
                           const ConnectionBound* residual, ShadowQueue& queue) const;
+    /// The connection to the set's indirect VPL j, its contribution scaled by `scale` (a chosen
+    /// VPL's weight), from the shadow rays' `origin` at x.
+    void connectVpl(const ShadingPoint& x, const LightingSet& set, std::size_t j, float scale,
+                    glm::vec3 origin, const ConnectionBound* residual, ShadowQueue& queue) const;
+    /// Every VPL of the set at a Lambertian point under the paper's clamp: connectVpl's
+    /// arithmetic four VPLs at a time, with the same result.
+    void connectLambertian(const ShadingPoint& x, const LightingSet& set, glm::vec3 origin,
+                           ShadowQueue& queue) const;
     /// This thread's queue for the points of one continuation depth, emptied.
     static ShadowQueue& scratchQueue(int depth);
     void gatherPhotons(const ShadingPoint& x, const LightingSet& set, bool withGlossy,

@@ -132,15 +132,14 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
     if (lights_.empty()) return set;
     sampleDirect(frame, setIndex, set);
     if (lightPaths) walkLightPaths(frame, setIndex, set);
-    if (vplPool_ > 0) {
-        // Set k's offset in [k / K, (k + 1) / K): the frame's sets together stratify the choice
-        // over the neighbouring pixels that the discontinuity buffer averages.
-        const float u =
-            Sobol::toFloat(scrambleBits(settings_.seed, frame, SampleStream::VplChoice, 0));
-        const float sets = float(std::max(1, settings_.setCount()));
-        set.vplChoice.prepare(set.indirect, std::uint32_t(std::max(0, settings_.indirectVpls)),
-                              std::min((float(setIndex) + u) / sets, 0.99999994f));
-    }
+    // The VPLs laid out four-wide, for the connections (and with a pool, the choice among them).
+    // Set k's offset in [k / K, (k + 1) / K): the frame's sets together stratify the choice over
+    // the neighbouring pixels that the discontinuity buffer averages.
+    const float u = Sobol::toFloat(scrambleBits(settings_.seed, frame, SampleStream::VplChoice, 0));
+    const float sets = float(std::max(1, settings_.setCount()));
+    set.vplChoice.prepare(set.indirect,
+                          vplPool_ > 0 ? std::uint32_t(std::max(0, settings_.indirectVpls)) : 0,
+                          std::min((float(setIndex) + u) / sets, 0.99999994f));
     std::uint32_t shot = 0;
     std::vector<CausticPhoton> photons;
     if (caustics && accumulating && settings_.poolCaustics) {

@@ -29,12 +29,15 @@ namespace igi {
 struct VplChoice {
     std::uint32_t perPoint = 0;  ///< 0: every point connects to every VPL of the set
     float offset = 0.5f;         ///< in [0, 1)
-    /// The set's VPLs four-wide (padded with zero brightness): position, normal, brightness.
+    /// The set's VPLs four-wide (padded with zero brightness): position, normal, brightness;
+    /// also what the connections of a Lambertian point read four at a time (EndPointShader).
     std::vector<float> px, py, pz, nx, ny, nz, lum;
 
     static constexpr float kUniformShare = 0.1f;
 
     bool active(std::size_t vpls) const { return perPoint > 0 && perPoint < vpls; }
+    /// Whether prepare() laid out these `vpls` (sets made elsewhere have no lanes).
+    bool laidOut(std::size_t vpls) const { return vpls > 0 && lum.size() == (vpls + 3) / 4 * 4; }
     /// Lays out `vpls` for the choice of `perPoint` per point with this set's `offset`.
     void prepare(const std::vector<Vpl>& vpls, std::uint32_t perPoint, float offset);
 

@@ -60,7 +60,9 @@ TEST(VplChoice, ChosenVplsEstimateTheSumOverThePool) {
             const std::uint32_t chosen = choice.choose(x, n, n, dmin2, picks.data());
             ASSERT_LE(chosen, perPoint);
             for (std::uint32_t i = 0; i < chosen; ++i) {
-                if (i > 0) ASSERT_LT(picks[i - 1].index, picks[i].index);
+                if (i > 0) {
+                    ASSERT_LT(picks[i - 1].index, picks[i].index);
+                }
                 const float c = contribution(vpls[picks[i].index], x, n, dmin2);
                 ASSERT_GT(c, 0) << "a VPL that cannot light the point was chosen";
                 sum += picks[i].scale * c;
