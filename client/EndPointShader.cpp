@@ -1,6 +1,7 @@
 #include "EndPointShader.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -21,6 +22,17 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 // for a point reached by a compensation ray (`residual`); 1 otherwise.
 float residualWeight(const ConnectionBound* residual, float sharpness) {
     return residual ? 1.0f - residual->kept(sharpness) : 1.0f;
+}
+
+// Bit i set where lane i of the mask is (all bits set or not).
+std::uint32_t laneBits(Float4 mask) {
+#if defined(__SSE2__)
+    return std::uint32_t(_mm_movemask_ps(mask.v));
+#else
+    std::uint32_t bits = 0;
+    for (int i = 0; i < 4; ++i) bits |= std::uint32_t(mask.v[i] != 0) << i;
+    return bits;
+#endif
 }
 
 float maxSharpnessOf(const std::vector<Material>& materials) {
@@ -230,18 +242,24 @@ void EndPointShader::connectLambertian(const ShadingPoint& x, const LightingSet&
         const Float4 cosY = zero - (Float4::load(&l.nx[j]) * wx + Float4::load(&l.ny[j]) * wy +
                                     Float4::load(&l.nz[j]) * wz);
         const Float4 g = cosX * cosY / max(d2, m2);
-        float v[9][4];
-        d2.store(v[0]), d.store(v[1]), wx.store(v[2]), wy.store(v[3]), wz.store(v[4]);
-        cosX.store(v[5]), face.store(v[6]), cosY.store(v[7]), g.store(v[8]);
-        for (std::size_t i = 0; i < 4 && j + i < count; ++i) {
+        // The scalar tests, negated as there: a NaN cosine is not rejected, a NaN d2 is.
+        const Float4 reject = notGreater(d2, zero) | lessEqual(cosX, zero) |
+                              lessEqual(face, zero) | lessEqual(cosY, zero);
+        std::uint32_t lanes = ~laneBits(reject) & 0xFu;
+        if (l.anyGlossy) lanes |= l.glossyBits(j);  // these take the general connection
+        if (j + 4 > count) lanes &= (1u << (count - j)) - 1u;
+        if (lanes == 0) continue;
+        float v[6][4];
+        d.store(v[0]), wx.store(v[1]), wy.store(v[2]), wz.store(v[3]), g.store(v[4]);
+        for (; lanes != 0; lanes &= lanes - 1) {
+            const auto i = std::size_t(std::countr_zero(lanes));
             const Vpl& vpl = set.indirect[j + i];
-            if (vpl.glossy()) {  // not Lambertian at this end: the general connection
+            if (vpl.glossy()) {
                 connectVpl(x, set, j + i, 1.0f, origin, nullptr, queue);
                 continue;
             }
-            if (!(v[0][i] > 0) || v[5][i] <= 0 || v[6][i] <= 0 || v[7][i] <= 0) continue;
-            queue.add(first + std::uint32_t(j + i), glm::vec3(v[2][i], v[3][i], v[4][i]),
-                      v[1][i] * (1.0f - kVplShadowShrink), vpl.power * v[8][i], glm::vec3(0.0f));
+            queue.add(first + std::uint32_t(j + i), glm::vec3(v[1][i], v[2][i], v[3][i]),
+                      v[0][i] * (1.0f - kVplShadowShrink), vpl.power * v[4][i], glm::vec3(0.0f));
         }
     }
 }

@@ -32,7 +32,7 @@ void ShadowQueue::sortByTarget() {
 
 template <int N>
 void ShadowQueue::traceAs(const TraceableScene& scene, bool sorted, RayCounters& counters) {
-    TraceableScene::ShadowPacket<N> packet;
+    thread_local TraceableScene::ShadowPacket<N> packet;  // its fixed fields are set once
     bool blocked[N];
     for (std::size_t i = 0; i < size_; i += N) {
         const int count = int(std::min(size_ - i, std::size_t(N)));

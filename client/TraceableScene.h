@@ -159,6 +159,17 @@ struct TraceableScene::ShadowPacket {
     alignas(64) int valid[N];
     alignas(64) Rays rays;
 
+    /// The lanes' fixed fields, once: Embree writes only tfar back (-inf on a hit).
+    ShadowPacket() {
+        for (int i = 0; i < N; ++i) {
+            set(i, glm::vec3(0.0f), glm::vec3(0, 0, 1), 0.0f);
+            rays.tnear[i] = 0.0f;
+            rays.mask[i] = 0xFFFFFFFFu;
+            rays.flags[i] = 0;
+            rays.time[i] = 0;
+            rays.id[i] = unsigned(i);
+        }
+    }
     void set(int lane, glm::vec3 origin, glm::vec3 direction, float tfar) {
         rays.org_x[lane] = origin.x;
         rays.org_y[lane] = origin.y;
@@ -175,23 +186,15 @@ void TraceableScene::occluded(ShadowPacket<N>& packet, int count, bool* blocked,
                               RayCounters& counters) const {
     counters.rays += std::uint64_t(count);
     counters.shadowRays += std::uint64_t(count);
-    auto& r = packet.rays;
-    for (int i = 0; i < N; ++i) {
-        packet.valid[i] = i < count ? -1 : 0;
-        r.tnear[i] = 0.0f;
-        r.mask[i] = 0xFFFFFFFFu;
-        r.flags[i] = 0;
-        r.time[i] = 0;
-        r.id[i] = unsigned(i);
-    }
-    for (int i = count; i < N; ++i) packet.set(i, glm::vec3(0.0f), glm::vec3(0, 0, 1), 0.0f);
+    // Lanes past `count` are switched off: Embree reads nothing else of them.
+    for (int i = 0; i < N; ++i) packet.valid[i] = i < count ? -1 : 0;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);  // not COHERENT: see occludedPacket
     if constexpr (N == 8)
-        rtcOccluded8(packet.valid, top_, &context, &r);
+        rtcOccluded8(packet.valid, top_, &context, &packet.rays);
     else
-        rtcOccluded16(packet.valid, top_, &context, &r);
-    for (int i = 0; i < count; ++i) blocked[i] = r.tfar[i] < 0.0f;  // -inf on a hit
+        rtcOccluded16(packet.valid, top_, &context, &packet.rays);
+    for (int i = 0; i < count; ++i) blocked[i] = packet.rays.tfar[i] < 0.0f;  // -inf on a hit
 }
 
 }  // namespace igi

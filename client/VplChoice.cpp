@@ -13,11 +13,17 @@ void VplChoice::prepare(const std::vector<Vpl>& vpls, std::uint32_t points, floa
     offset = u;
     const std::size_t padded = (vpls.size() + 3) / 4 * 4;
     for (auto* v : {&px, &py, &pz, &nx, &ny, &nz, &lum}) v->assign(padded, 0.0f);
+    glossy.assign(padded / 4, 0);
+    anyGlossy = false;
     for (std::size_t i = 0; i < vpls.size(); ++i) {
         const Vpl& v = vpls[i];
         px[i] = v.position.x, py[i] = v.position.y, pz[i] = v.position.z;
         nx[i] = v.normal.x, ny[i] = v.normal.y, nz[i] = v.normal.z;
         lum[i] = std::max(0.0f, luminance(v.power) + luminance(v.glossyPower));
+        if (v.glossy()) {
+            glossy[i / 4] |= std::uint8_t(1u << (i % 4));
+            anyGlossy = true;
+        }
     }
 }
 

@@ -32,6 +32,9 @@ struct VplChoice {
     /// The set's VPLs four-wide (padded with zero brightness): position, normal, brightness;
     /// also what the connections of a Lambertian point read four at a time (EndPointShader).
     std::vector<float> px, py, pz, nx, ny, nz, lum;
+    bool anyGlossy = false;
+    std::vector<std::uint8_t> glossy;  ///< per four VPLs: bit i where VPL 4k + i is glossy
+    std::uint32_t glossyBits(std::size_t first) const { return glossy[first / 4]; }
 
     static constexpr float kUniformShare = 0.1f;
 
