@@ -42,6 +42,16 @@ void fillPacket(Packet& rays, int* valid, int count, const glm::vec3* origins,
     }
 }
 
+// Whether every ray leaves from origins[0] with the direction signs of directions[0].
+bool sameOriginAndOctant(const glm::vec3* origins, const glm::vec3* directions, int count) {
+    for (int i = 1; i < count; ++i) {
+        if (origins[i] != origins[0]) return false;
+        for (int c = 0; c < 3; ++c)
+            if (std::signbit(directions[i][c]) != std::signbit(directions[0][c])) return false;
+    }
+    return true;
+}
+
 int defaultPacketWidth(RTCDevice device) {
     if (const char* forced = std::getenv("IGI_PACKET_WIDTH")) {
         const int w = std::atoi(forced);
@@ -232,6 +242,12 @@ void TraceableScene::intersectPacket(const glm::vec3* origins, const glm::vec3* 
     counters.rays += std::uint64_t(count);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
+    // Eye rays share their origin and, but for the packets that straddle the view's axes, the
+    // signs of their directions: for such packets Embree's coherent traversal is 5-6 % faster
+    // a frame (igi-bench, Cornell scenes). With directions in other octants it returned wrong
+    // hits (TraceableScene_test), so other packets go the usual way.
+    if (sameOriginAndOctant(origins, directions, count))
+        context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     auto finish = [&](auto& packet) {
         for (int i = 0; i < count; ++i) {
             found[i] = packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;

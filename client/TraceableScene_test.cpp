@@ -76,9 +76,14 @@ TEST(TraceableScene, PacketsOfClosestHitRaysFindWhatSingleRaysFind) {
             const int count = 1 + round % TraceableScene::kMaxPacket;
             glm::vec3 origins[TraceableScene::kMaxPacket], directions[TraceableScene::kMaxPacket];
             float tfar[TraceableScene::kMaxPacket];
+            // Every other packet is coherent (one origin, one octant) as eye rays are, which
+            // Embree traces in another way; the others have random origins and directions.
+            const bool coherent = round % 2 == 0;
+            const glm::vec3 shared = rays.origin();
             for (int i = 0; i < count; ++i) {
-                const auto r = rays.shadowRay(rays.origin());
-                origins[i] = r.origin, directions[i] = r.direction;
+                const auto r = rays.shadowRay(coherent ? shared : rays.origin());
+                origins[i] = r.origin;
+                directions[i] = coherent ? glm::abs(r.direction) : r.direction;
                 tfar[i] = round % 3 ? INFINITY : r.tfar;  // misses inside the box too
             }
             SurfacePoint found[TraceableScene::kMaxPacket];
