@@ -1,6 +1,7 @@
 #include "EndPointShader.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -9,6 +10,7 @@
 #include "ConnectionBound.h"
 #include "DeltaChain.h"
 #include "math/Color.h"
+#include "math/Float4.h"
 #include "math/Warp.h"
 
 namespace igi {
@@ -22,46 +24,16 @@ float residualWeight(const ConnectionBound* residual, float sharpness) {
     return residual ? 1.0f - residual->kept(sharpness) : 1.0f;
 }
 
-// Shadow rays from one origin in packets of up to 8; each unblocked ray adds its two
-// contributions, in the order they were queued (the sum does not depend on the packets).
-class ShadowBatch {
-  public:
-    ShadowBatch(const TraceableScene& scene, glm::vec3 origin, RayCounters& counters)
-        : scene_(scene), origin_(origin), counters_(counters) {}
-
-    void add(glm::vec3 direction, float distance, glm::vec3 irradiance, glm::vec3 glossy,
-             glm::vec3& irradianceSum, glm::vec3& glossySum) {
-        directions_[pending_] = direction;
-        tfar_[pending_] = distance * (1.0f - kVplShadowShrink);
-        irradiance_[pending_] = irradiance;
-        glossy_[pending_] = glossy;
-        if (++pending_ == kPacket) flush(irradianceSum, glossySum);
-    }
-
-    void flush(glm::vec3& irradianceSum, glm::vec3& glossySum) {
-        if (pending_ == 0) return;
-        if (pending_ == 1)
-            blocked_[0] = scene_.occluded(origin_, directions_[0], tfar_[0], counters_);
-        else
-            scene_.occluded8(origin_, directions_, tfar_, pending_, blocked_, counters_);
-        for (int i = 0; i < pending_; ++i) {
-            if (blocked_[i]) continue;
-            irradianceSum += irradiance_[i];
-            glossySum += glossy_[i];
-        }
-        pending_ = 0;
-    }
-
-  private:
-    static constexpr int kPacket = TraceableScene::kPacket;
-    const TraceableScene& scene_;
-    glm::vec3 origin_;
-    RayCounters& counters_;
-    glm::vec3 directions_[kPacket], irradiance_[kPacket], glossy_[kPacket];
-    float tfar_[kPacket];
-    bool blocked_[kPacket];
-    int pending_ = 0;
-};
+// Bit i set where lane i of the mask is (all bits set or not).
+std::uint32_t laneBits(Float4 mask) {
+#if defined(__SSE2__)
+    return std::uint32_t(_mm_movemask_ps(mask.v));
+#else
+    std::uint32_t bits = 0;
+    for (int i = 0; i < 4; ++i) bits |= std::uint32_t(mask.v[i] != 0) << i;
+    return bits;
+#endif
+}
 
 float maxSharpnessOf(const std::vector<Material>& materials) {
     float s = 1.0f;
@@ -82,36 +54,72 @@ EndPointShader::EndPointShader(const TraceableScene& scene, const Lights& lights
       compensate_(settings.clampCompensation == ClampCompensation::KolligKeller),
       maxSharpness_(maxSharpnessOf(scene.materials())) {}
 
+ShadowQueue& EndPointShader::scratchQueue(int depth) {
+    // One queue per depth and thread: a point's continuation shades the next point (one level
+    // deeper) before the point's own queue is summed.
+    thread_local ShadowQueue queues[kMaxDepth + 1];
+    ShadowQueue& q = queues[std::clamp(depth, 0, kMaxDepth)];
+    q.clear();
+    return q;
+}
+
 EndPointLight EndPointShader::shadeAt(const ShadingPoint& x, const LightingSet& set,
                                       PathRandom* random, int depth,
                                       const ConnectionBound* residual,
                                       RayCounters& counters) const {
-    Sums sums;
+    ShadowQueue& queue = scratchQueue(depth);
+    const Pending pending = queueAt(x, set, random != nullptr, depth, residual, queue);
+    queue.trace(scene_, counters);
+    return finishAt(x, set, random, depth, residual, pending, queue, counters);
+}
+
+EndPointShader::Pending EndPointShader::queueAt(const ShadingPoint& x, const LightingSet& set,
+                                                bool withRandom, int depth,
+                                                const ConnectionBound* residual,
+                                                ShadowQueue& queue) const {
+    Pending pending;
     const bool glossy = x.brdf.hasGlossy();
-    const bool continuation = random != nullptr && depth < kMaxDepth &&
-                              (glossy || (compensate_ && set.compensationShare > 0 &&
-                                          set.minDistance2 > 0 && set.indirectLight));
-    gatherVpls(x, set, continuation && glossy, residual, sums, counters);
+    pending.continuation = withRandom && depth < kMaxDepth &&
+                           (glossy || (compensate_ && set.compensationShare > 0 &&
+                                       set.minDistance2 > 0 && set.indirectLight));
+    pending.point = queue.beginPoint(scene_.offsetOrigin(x.position, x.faceNormal));
+    pending.indirectFromMethod =
+        queueConnections(x, set, pending.continuation && glossy, residual, queue);
+    return pending;
+}
+
+EndPointLight EndPointShader::finishAt(const ShadingPoint& x, const LightingSet& set,
+                                       PathRandom* random, int depth,
+                                       const ConnectionBound* residual, const Pending& pending,
+                                       const ShadowQueue& queue, RayCounters& counters) const {
+    Sums sums;
+    queue.sum(pending.point, sums.irradiance, sums.glossy);
+    // Lambertian indirect light from the method's records (instant caching, photon map).
+    if (pending.indirectFromMethod)
+        sums.irradiance += set.indirectIrradiance->irradiance(x.position, x.faceNormal, counters);
     // Light that came through mirrors and glass: the photons carry it to the Lambertian lobe;
     // to the glossy lobe only when no continuation looks at the mirrors and glass itself.
-    gatherPhotons(x, set, glossy && !continuation, residual, sums);
-    if (continuation) continueFrom(x, set, *random, depth, residual, sums, counters);
+    const bool glossy = x.brdf.hasGlossy();
+    gatherPhotons(x, set, glossy && !pending.continuation, residual, sums);
+    if (pending.continuation) continueFrom(x, set, *random, depth, residual, sums, counters);
     return {sums.irradiance * kInvPi, sums.glossy};
 }
 
-void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
-                                bool misWithContinuation, const ConnectionBound* residual,
-                                Sums& sums, RayCounters& counters) const {
+bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& set,
+                                      bool misWithContinuation, const ConnectionBound* residual,
+                                      ShadowQueue& queue) const {
     const SurfaceBrdf& b = x.brdf;
     const bool glossy = b.hasGlossy();
     const glm::vec3 n = b.normal;
     const glm::vec3 origin = scene_.offsetOrigin(x.position, x.faceNormal);
-    ShadowBatch batch(scene_, origin, counters);
     const float lightSamples = float(directSamples_);
+    auto connect = [&](std::uint32_t target, glm::vec3 w, float d, glm::vec3 e, glm::vec3 g) {
+        queue.add(target, w, d * (1.0f - kVplShadowShrink), e, g);
+    };
 
     // Direct light: not bounded (its singularity is the light's own size, and for a glossy
     // lobe the MIS weight takes the light samples out where BRDF sampling is better).
-    auto addDirect = [&](const Vpl& v) {
+    auto addDirect = [&](const Vpl& v, std::uint32_t target) {
         const glm::vec3 toLight = v.position - origin;
         const float d2 = glm::dot(toLight, toLight);
         if (!(d2 > 0)) return;
@@ -132,14 +140,15 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
                 mis = powerHeuristic(lightSamples * v.areaPdf * d2 / cosY, b.pdf(w, x.mirror));
             g = e * b.glossy(cosAlpha) * mis;
         }
-        batch.add(w, d, e, g, sums.irradiance, sums.glossy);
+        connect(target, w, d, e, g);
     };
-    for (const Vpl& v : set.direct) addDirect(v);
+    for (std::size_t i = 0; i < set.direct.size(); ++i) addDirect(set.direct[i], std::uint32_t(i));
     // With a light tree the point turns the set's numbers into light samples of its own.
     LightTree::Memo memo;
     for (const glm::vec3& u : set.directNumbers) {
         const LightSample s = lights_.sampleAt(x.position, n, u.x, {u.y, u.z}, &memo);
-        if (s.pdf > 0) addDirect(directLightVpl(s, scene_, directSamples_));
+        if (s.pdf > 0)
+            addDirect(directLightVpl(s, scene_, directSamples_), ShadowQueue::kOwnTarget);
     }
 
     // Indirect light: every connection bounded, through the BRDFs at both ends; at a
@@ -147,41 +156,112 @@ void EndPointShader::gatherVpls(const ShadingPoint& x, const LightingSet& set,
     const bool lambertian = !glossy && residual == nullptr;
     // A glossy point's Lambertian lobe too, where the method has no VPLs for its glossy lobe
     // (that lobe's continuation ray takes the surfaces' radiance from the method instead).
-    if (residual == nullptr && set.indirectIrradiance && (!glossy || set.indirect.empty())) {
-        batch.flush(sums.irradiance, sums.glossy);
-        sums.irradiance += set.indirectIrradiance->irradiance(x.position, x.faceNormal, counters);
+    if (residual == nullptr && set.indirectIrradiance && (!glossy || set.indirect.empty()))
+        return true;
+    const bool clamp = set.boundShape == BoundShape::Clamp;
+    if (!set.vplChoice.active(set.indirect.size())) {
+        if (lambertian && clamp && set.vplChoice.laidOut(set.indirect.size()))
+            connectLambertian(x, set, origin, queue);
+        else
+            for (std::size_t j = 0; j < set.indirect.size(); ++j)
+                connectVpl(x, set, j, 1.0f, origin, residual, queue);
+        return false;
+    }
+    // A few of the pool's VPLs, chosen by what each could give this point.
+    thread_local std::vector<VplChoice::Pick> picks;
+    picks.resize(set.vplChoice.perPoint);
+    const std::uint32_t chosen =
+        set.vplChoice.choose(origin, n, x.faceNormal, set.minDistance2, picks.data());
+    for (std::uint32_t k = 0; k < chosen; ++k)
+        connectVpl(x, set, picks[k].index, picks[k].scale, origin, residual, queue);
+    return false;
+}
+
+void EndPointShader::connectVpl(const ShadingPoint& x, const LightingSet& set, std::size_t j,
+                                float scale, glm::vec3 origin, const ConnectionBound* residual,
+                                ShadowQueue& queue) const {
+    const SurfaceBrdf& b = x.brdf;
+    const bool glossy = b.hasGlossy();
+    const glm::vec3 n = b.normal;
+    const Vpl& v = set.indirect[j];
+    const auto target = std::uint32_t(set.direct.size() + j);
+    auto connect = [&](glm::vec3 w, float d, glm::vec3 e, glm::vec3 g) {
+        queue.add(target, w, d * (1.0f - kVplShadowShrink), e, g);
+    };
+    const glm::vec3 toLight = v.position - origin;
+    const float d2 = glm::dot(toLight, toLight);
+    if (!(d2 > 0)) return;
+    const float d = std::sqrt(d2);
+    const glm::vec3 w = toLight / d;
+    const float cosX = glm::dot(n, w);
+    if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) return;
+    const float cosY = -glm::dot(v.normal, w);
+    if (cosY <= 0) return;
+    if (!glossy && residual == nullptr && set.boundShape == BoundShape::Clamp && !v.glossy()) {
+        // Lambertian at both ends (sharpness 1, within any budget): the paper's clamp,
+        // G <= cos cos / dmin^2. The common case, kept apart for speed.
+        const float g = cosX * cosY / std::max(d2, set.minDistance2);
+        glm::vec3 e = v.power * g;
+        if (scale != 1.0f) e *= scale;
+        connect(w, d, e, glm::vec3(0.0f));
         return;
     }
-    const bool clamp = set.boundShape == BoundShape::Clamp;
-    for (const Vpl& v : set.indirect) {
-        const glm::vec3 toLight = v.position - origin;
-        const float d2 = glm::dot(toLight, toLight);
-        if (!(d2 > 0)) continue;
-        const float d = std::sqrt(d2);
-        const glm::vec3 w = toLight / d;
-        const float cosX = glm::dot(n, w);
-        if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) continue;
-        const float cosY = -glm::dot(v.normal, w);
-        if (cosY <= 0) continue;
-        if (lambertian && clamp && !v.glossy()) {
-            // Lambertian at both ends (sharpness 1, within any budget): the paper's clamp,
-            // G <= cos cos / dmin^2. The common case, kept apart for speed.
-            const float g = cosX * cosY / std::max(d2, set.minDistance2);
-            batch.add(w, d, v.power * g, glm::vec3(0.0f), sums.irradiance, sums.glossy);
-            continue;
+    const auto [intensity, sharpnessY] = v.towards(w);
+    const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
+    const float sharpnessX = glossy ? b.sharpness(cosAlpha) : b.diffuseShare;
+    const float kept = keptFraction(d2, set.minDistance2, set.sharpnessBudget, sharpnessX,
+                                    sharpnessY, set.boundShape);
+    const float r = residualWeight(residual, sharpnessX);
+    if (!(r > 0)) return;
+    glm::vec3 e = intensity * (cosX * cosY / d2 * kept * r);
+    if (scale != 1.0f) e *= scale;
+    const glm::vec3 g = glossy ? e * b.glossy(cosAlpha) : glm::vec3(0.0f);
+    connect(w, d, e, g);
+}
+
+void EndPointShader::connectLambertian(const ShadingPoint& x, const LightingSet& set,
+                                       glm::vec3 origin, ShadowQueue& queue) const {
+    // Every VPL of the set, four at a time: lane by lane the arithmetic of the scalar
+    // connection in queueConnections (glm's dot is (x x' + y y') + z z', -a is 0 - a where it
+    // passes), so that every value has the same bits; the tests stay scalar, as there. A
+    // connection is mostly rejected by its cosines, after a square root and a division whose
+    // latencies the four lanes share.
+    const VplChoice& l = set.vplChoice;
+    const glm::vec3 n = x.brdf.normal, f = x.faceNormal;
+    const Float4 ox(origin.x), oy(origin.y), oz(origin.z), m2(set.minDistance2), zero(0.0f);
+    const auto first = std::uint32_t(set.direct.size());
+    const std::size_t count = set.indirect.size();
+    for (std::size_t j = 0; j < count; j += 4) {
+        const Float4 tx = Float4::load(&l.px[j]) - ox, ty = Float4::load(&l.py[j]) - oy,
+                     tz = Float4::load(&l.pz[j]) - oz;
+        const Float4 d2 = tx * tx + ty * ty + tz * tz;
+        const Float4 d = sqrt(d2);
+        const Float4 wx = tx / d, wy = ty / d, wz = tz / d;
+        const Float4 cosX = Float4(n.x) * wx + Float4(n.y) * wy + Float4(n.z) * wz;
+        const Float4 face = Float4(f.x) * wx + Float4(f.y) * wy + Float4(f.z) * wz;
+        const Float4 cosY = zero - (Float4::load(&l.nx[j]) * wx + Float4::load(&l.ny[j]) * wy +
+                                    Float4::load(&l.nz[j]) * wz);
+        const Float4 g = cosX * cosY / max(d2, m2);
+        // The scalar tests, negated as there: a NaN cosine is not rejected, a NaN d2 is.
+        const Float4 reject = notGreater(d2, zero) | lessEqual(cosX, zero) |
+                              lessEqual(face, zero) | lessEqual(cosY, zero);
+        std::uint32_t lanes = ~laneBits(reject) & 0xFu;
+        if (l.anyGlossy) lanes |= l.glossyBits(j);  // these take the general connection
+        if (j + 4 > count) lanes &= (1u << (count - j)) - 1u;
+        if (lanes == 0) continue;
+        float v[6][4];
+        d.store(v[0]), wx.store(v[1]), wy.store(v[2]), wz.store(v[3]), g.store(v[4]);
+        for (; lanes != 0; lanes &= lanes - 1) {
+            const auto i = std::size_t(std::countr_zero(lanes));
+            const Vpl& vpl = set.indirect[j + i];
+            if (vpl.glossy()) {
+                connectVpl(x, set, j + i, 1.0f, origin, nullptr, queue);
+                continue;
+            }
+            queue.add(first + std::uint32_t(j + i), glm::vec3(v[1][i], v[2][i], v[3][i]),
+                      v[0][i] * (1.0f - kVplShadowShrink), vpl.power * v[4][i], glm::vec3(0.0f));
         }
-        const auto [intensity, sharpnessY] = v.towards(w);
-        const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
-        const float sharpnessX = glossy ? b.sharpness(cosAlpha) : b.diffuseShare;
-        const float kept = keptFraction(d2, set.minDistance2, set.sharpnessBudget, sharpnessX,
-                                        sharpnessY, set.boundShape);
-        const float r = residualWeight(residual, sharpnessX);
-        if (!(r > 0)) continue;
-        const glm::vec3 e = intensity * (cosX * cosY / d2 * kept * r);
-        const glm::vec3 g = glossy ? e * b.glossy(cosAlpha) : glm::vec3(0.0f);
-        batch.add(w, d, e, g, sums.irradiance, sums.glossy);
     }
-    batch.flush(sums.irradiance, sums.glossy);
 }
 
 void EndPointShader::gatherPhotons(const ShadingPoint& x, const LightingSet& set, bool withGlossy,

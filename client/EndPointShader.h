@@ -7,6 +7,7 @@
 #include "Lights.h"
 #include "PathRandom.h"
 #include "Scattering.h"
+#include "ShadowQueue.h"
 #include "TraceableScene.h"
 #include "render/RenderSettings.h"
 
@@ -64,6 +65,24 @@ class EndPointShader {
         return shadeAt(x, set, nullptr, 0, nullptr, counters);
     }
 
+    /// shade() in two steps, for many points at once: queue() puts a point's shadow rays to the
+    /// set's lights and VPLs into `queue` without tracing them; once the queue is traced,
+    /// finish() adds up what reached the point and the rest of its light (photons, the
+    /// continuation). finish(queue(x)) after tracing gives exactly shade(x).
+    struct Pending {
+        std::uint32_t point = 0;          ///< the point's index in the queue
+        bool continuation = false;        ///< whether finish() traces a continuation
+        bool indirectFromMethod = false;  ///< Lambertian indirect light from the method's records
+    };
+    Pending queue(const ShadingPoint& x, const LightingSet& set, ShadowQueue& queue) const {
+        return queueAt(x, set, true, 0, nullptr, queue);
+    }
+    EndPointLight finish(const ShadingPoint& x, const LightingSet& set, PathRandom& random,
+                         const Pending& pending, const ShadowQueue& queue,
+                         RayCounters& counters) const {
+        return finishAt(x, set, &random, 0, nullptr, pending, queue, counters);
+    }
+
     /// Continuations nest at most this deep (compensation of a compensation, a glossy lobe's
     /// view of a glossy surface, ...); past it the deeper terms are left out.
     static constexpr int kMaxDepth = 3;
@@ -79,8 +98,25 @@ class EndPointShader {
     /// 1 - residual->kept(s(w)), s this point's sharpness (ConnectionBound).
     EndPointLight shadeAt(const ShadingPoint& x, const LightingSet& set, PathRandom* random,
                           int depth, const ConnectionBound* residual, RayCounters& counters) const;
-    void gatherVpls(const ShadingPoint& x, const LightingSet& set, bool misWithContinuation,
-                    const ConnectionBound* residual, Sums& sums, RayCounters& counters) const;
+    Pending queueAt(const ShadingPoint& x, const LightingSet& set, bool withRandom, int depth,
+                    const ConnectionBound* residual, ShadowQueue& queue) const;
+    EndPointLight finishAt(const ShadingPoint& x, const LightingSet& set, PathRandom* random,
+                           int depth, const ConnectionBound* residual, const Pending& pending,
+                           const ShadowQueue& queue, RayCounters& counters) const;
+    /// Queues the connections to the set's light samples and VPLs. True when the method's
+    /// records give the Lambertian indirect light instead of the VPLs.
+    bool queueConnections(const ShadingPoint& x, const LightingSet& set, bool misWithContinuation,
+                          const ConnectionBound* residual, ShadowQueue& queue) const;
+    /// The connection to the set's indirect VPL j, its contribution scaled by `scale` (a chosen
+    /// VPL's weight), from the shadow rays' `origin` at x.
+    void connectVpl(const ShadingPoint& x, const LightingSet& set, std::size_t j, float scale,
+                    glm::vec3 origin, const ConnectionBound* residual, ShadowQueue& queue) const;
+    /// Every VPL of the set at a Lambertian point under the paper's clamp: connectVpl's
+    /// arithmetic four VPLs at a time, with the same result.
+    void connectLambertian(const ShadingPoint& x, const LightingSet& set, glm::vec3 origin,
+                           ShadowQueue& queue) const;
+    /// This thread's queue for the points of one continuation depth, emptied.
+    static ShadowQueue& scratchQueue(int depth);
     void gatherPhotons(const ShadingPoint& x, const LightingSet& set, bool withGlossy,
                        const ConnectionBound* residual, Sums& sums) const;
     void continueFrom(const ShadingPoint& x, const LightingSet& set, PathRandom& random, int depth,

@@ -1,10 +1,13 @@
 #include "IgiIntegrator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
+#include "ShadowQueue.h"
 #include "math/Color.h"
 #include "math/Warp.h"
 
@@ -25,50 +28,131 @@ IgiIntegrator::IgiIntegrator(const TraceableScene& scene, const Lights& lights,
                              const RenderSettings& settings, const CameraModel& camera)
     : scene_(scene), settings_(settings), camera_(camera), shader_(scene, lights, settings) {}
 
+/// One pixel's eye path through the phases of shade(): its numbers, the eye ray's hit, its end
+/// points and what each queued.
+struct IgiIntegrator::PixelPath {
+    PixelSampler sampler{0, SampleStream::EyePath, 0, 0};
+    std::uint32_t nextNumber = 2;  ///< 0 and 1: the position in the pixel
+    glm::vec3 direction{0.0f};
+    SurfacePoint hit;
+    bool found = false;
+    std::optional<ChainEnd> ends[3];  ///< the non-delta part, then the mirror and glass paths
+    EndPointShader::Pending pending[3];
+    int primary = -1;  ///< the end point the master filters
+};
+
 PixelResult IgiIntegrator::shade(int x, int y, std::uint32_t pixelIndex, std::uint32_t frame,
                                  const LightingSet& set, RayCounters& counters) const {
+    const Pixel pixel{x, y, pixelIndex};
     PixelResult result;
-    const PixelSampler sampler(settings_.seed, SampleStream::EyePath, pixelIndex, frame);
-    PathRandom random(sampler, 2);  // 0 and 1: the position in the pixel
-    const glm::vec3 direction =
-        camera_.direction(float(x) + sampler.get(0), float(y) + sampler.get(1));
-    SurfacePoint hit;
-    if (!scene_.intersect(camera_.origin(), direction, kInfinity, hit, counters)) return result;
+    shade(&pixel, 1, frame, set, &result, counters);
+    return result;
+}
 
-    const glm::vec3 wo = -direction;
+void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
+                          const LightingSet& set, PixelResult* results,
+                          RayCounters& counters) const {
+    // Per thread, kept between calls: no allocation per chunk once warm.
+    thread_local std::vector<PixelPath> paths;
+    thread_local ShadowQueue queue;
+    paths.resize(std::size_t(count));
+    for (int i = 0; i < count; ++i) {
+        PixelPath& p = paths[std::size_t(i)];
+        // Reset field by field: a whole PixelPath{} would copy its three end points' storage.
+        for (auto& e : p.ends) e.reset();
+        p.found = false;
+        p.primary = -1;
+        p.nextNumber = 2;
+        p.sampler = PixelSampler(settings_.seed, SampleStream::EyePath, pixels[i].index, frame);
+        p.direction = camera_.direction(float(pixels[i].x) + p.sampler.get(0),
+                                        float(pixels[i].y) + p.sampler.get(1));
+        results[i] = PixelResult{};
+    }
+    traceEyeRays(paths.data(), count, counters);
+    queue.clear();
+    for (int i = 0; i < count; ++i) {
+        PixelPath& p = paths[std::size_t(i)];
+        if (!p.found) continue;
+        splitAtFirstHit(p, results[i], counters);
+        for (int e = 0; e < 3; ++e)
+            if (p.ends[e])
+                p.pending[e] =
+                    shader_.queue(ShadingPoint::at(p.ends[e]->hit, p.ends[e]->lobes), set, queue);
+    }
+    queue.trace(scene_, counters);
+    for (int i = 0; i < count; ++i)
+        if (paths[std::size_t(i)].primary >= 0)
+            shadeEnds(paths[std::size_t(i)], set, queue, results[i], counters);
+}
+
+void IgiIntegrator::traceEyeRays(PixelPath* paths, int count, RayCounters& counters) const {
+    const int width = scene_.packetWidth();
+    glm::vec3 origins[TraceableScene::kMaxPacket], directions[TraceableScene::kMaxPacket];
+    float tfar[TraceableScene::kMaxPacket];
+    SurfacePoint hits[TraceableScene::kMaxPacket];
+    bool found[TraceableScene::kMaxPacket];
+    for (int begin = 0; begin < count; begin += width) {
+        const int n = std::min(width, count - begin);
+        if (n == 1) {
+            PixelPath& p = paths[begin];
+            p.found = scene_.intersect(camera_.origin(), p.direction, kInfinity, p.hit, counters);
+            continue;
+        }
+        for (int k = 0; k < n; ++k) {
+            origins[k] = camera_.origin();
+            directions[k] = paths[begin + k].direction;
+            tfar[k] = kInfinity;
+        }
+        scene_.intersectPacket(origins, directions, tfar, n, hits, found, counters);
+        for (int k = 0; k < n; ++k) {
+            paths[begin + k].found = found[k];
+            if (found[k]) paths[begin + k].hit = hits[k];
+        }
+    }
+}
+
+void IgiIntegrator::splitAtFirstHit(PixelPath& p, PixelResult& result,
+                                    RayCounters& counters) const {
+    PathRandom random(p.sampler, p.nextNumber);
+    const SurfacePoint& hit = p.hit;
+    const glm::vec3 wo = -p.direction;
     result.unfiltered += emittedToward(hit, wo);
     const Lobes lobes = lobesAt(hit, wo);
 
     // Split once: the non-delta part here, and one path per delta component.
-    std::optional<ChainEnd> ends[3];
-    if (lobes.hasNonDelta()) ends[0] = ChainEnd{hit, lobes, glm::vec3(1.0f), hit.distance};
+    if (lobes.hasNonDelta()) p.ends[0] = ChainEnd{hit, lobes, glm::vec3(1.0f), hit.distance};
     const Lobe deltas[2] = {Lobe::Reflection, Lobe::Transmission};
     for (int i = 0; i < 2; ++i) {
         glm::vec3 next, weight;
         if (lobeWeight(lobes, deltas[i]) <= 0 ||
             !sampleLobe(lobes, deltas[i], {0.5f, 0.5f}, next, weight))
             continue;
-        ends[i + 1] = followDeltaChain(
+        p.ends[i + 1] = followDeltaChain(
             scene_, scene_.offsetOrigin(hit.position, lobes.faceNormal, next), next, weight,
             hit.distance, settings_.maxEyeDepth, [&] { return random.next(); }, result.unfiltered,
             counters);
     }
+    p.nextNumber = random.position();
 
     // The end point that reflects most is the one the master filters.
-    int primary = -1;
     auto reflectance = [](const ChainEnd& e) {
         return luminance(e.throughput * (e.lobes.brdf.kd + e.lobes.brdf.ks));
     };
     for (int i = 0; i < 3; ++i)
-        if (ends[i] && (primary < 0 || reflectance(*ends[i]) > reflectance(*ends[primary])))
-            primary = i;
-    if (primary < 0) return result;
+        if (p.ends[i] &&
+            (p.primary < 0 || reflectance(*p.ends[i]) > reflectance(*p.ends[p.primary])))
+            p.primary = i;
+}
+
+void IgiIntegrator::shadeEnds(PixelPath& p, const LightingSet& set, const ShadowQueue& queue,
+                              PixelResult& result, RayCounters& counters) const {
+    PathRandom random(p.sampler, p.nextNumber);
     for (int i = 0; i < 3; ++i) {
-        if (!ends[i]) continue;
-        const ChainEnd& e = *ends[i];
-        const EndPointLight light =
-            shader_.shade(ShadingPoint::at(e.hit, e.lobes), set, random, counters);
-        if (i == primary) {
+        if (!p.ends[i]) continue;
+        const ChainEnd& e = *p.ends[i];
+        const EndPointLight light = shader_.finish(ShadingPoint::at(e.hit, e.lobes), set, random,
+                                                   p.pending[i], queue, counters);
+        if (i == p.primary) {
             result.irradiance = light.irradiance;
             result.reflectance = e.throughput * e.lobes.brdf.kd;
             result.glossy = e.throughput * light.glossy;
@@ -79,7 +163,6 @@ PixelResult IgiIntegrator::shade(int x, int y, std::uint32_t pixelIndex, std::ui
             result.unfiltered += e.throughput * light.radiance(e.lobes.brdf);
         }
     }
-    return result;
 }
 
 glm::vec3 IgiIntegrator::irradianceOverPi(glm::vec3 position, glm::vec3 normal,

@@ -3,7 +3,6 @@
 #include <cstdint>
 #include <optional>
 
-#include "scene/CameraModel.h"
 #include "DeltaChain.h"
 #include "EndPointShader.h"
 #include "LightingSet.h"
@@ -12,6 +11,7 @@
 #include "PixelSampler.h"
 #include "TraceableScene.h"
 #include "render/RenderSettings.h"
+#include "scene/CameraModel.h"
 
 namespace igi {
 
@@ -26,8 +26,19 @@ class IgiIntegrator {
     IgiIntegrator(const TraceableScene& scene, const Lights& lights, const RenderSettings& settings,
                   const CameraModel& camera);
 
+    /// A pixel to shade: where it is in the image and its index (y * width + x).
+    struct Pixel {
+        int x = 0, y = 0;
+        std::uint32_t index = 0;
+    };
+
     PixelResult shade(int x, int y, std::uint32_t pixelIndex, std::uint32_t frame,
                       const LightingSet& set, RayCounters& counters) const;
+    /// Shades `count` pixels of one set into results[0, count): each exactly as shade() would,
+    /// their rays traced together (eye rays in packets, shadow rays in packets by target through
+    /// a ShadowQueue), which is faster. The result of a pixel does not depend on the others.
+    void shade(const Pixel* pixels, int count, std::uint32_t frame, const LightingSet& set,
+               PixelResult* results, RayCounters& counters) const;
 
     /// E / pi at a Lambertian point lit by `set`, with `normal` facing the viewer, without any
     /// continuation ray (public for tests).
@@ -35,6 +46,12 @@ class IgiIntegrator {
                                const LightingSet& set, RayCounters& counters) const;
 
   private:
+    struct PixelPath;
+    void traceEyeRays(PixelPath* paths, int count, RayCounters& counters) const;
+    void splitAtFirstHit(PixelPath& path, PixelResult& result, RayCounters& counters) const;
+    void shadeEnds(PixelPath& path, const LightingSet& set, const ShadowQueue& queue,
+                   PixelResult& result, RayCounters& counters) const;
+
     const TraceableScene& scene_;
     RenderSettings settings_;
     const CameraModel& camera_;

@@ -1,6 +1,9 @@
 #include "IgiIntegrator.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -92,6 +95,54 @@ TEST_P(GlossySphere, ConvergedIgiMatchesThePathTracerWithinTwoPercent) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scales, GlossySphere, ::testing::Values(1e-3f, 1.0f, 1e3f));
+
+bool sameBits(glm::vec3 a, glm::vec3 b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// Pixels shaded together (eye rays in packets, shadow rays traced by target across the pixels)
+// must come out exactly as each shaded alone, in any company and order: else an image would
+// depend on how the tiles were cut into chunks, and so on which client rendered what.
+TEST(IgiIntegrator, APixelShadedWithOthersIsThePixelShadedAlone) {
+    for (const bool accumulated : {false, true}) {
+        Scene scene = testing::cornellBox(1.0f, true);
+        scene.materials[0].specular = glm::vec3(0.3f);  // a glossy floor and back wall: MIS and
+        scene.materials[0].phongExponent = 30.0f;       // continuations, besides the glass
+        scene.materials[0].reflection = Reflection::Glossy;
+        scene.image = {48, 36, 0};
+        InProcessRenderer renderer(scene);
+        TileRenderer& tiles = renderer.renderer();
+        bool built = false;
+        const auto set = tiles.cache().get(3, accumulated ? 5 : 0, 4, built);
+        const IgiIntegrator igi(renderer.traceable(), tiles.lights(), scene.render, tiles.camera());
+        std::vector<IgiIntegrator::Pixel> pixels;
+        for (int y = 0; y < scene.image.height; ++y)
+            for (int x = 0; x < scene.image.width; ++x)
+                pixels.push_back({x, y, std::uint32_t(y * scene.image.width + x)});
+        std::reverse(pixels.begin() + 100, pixels.begin() + 300);  // any order
+        std::vector<PixelResult> together(pixels.size());
+        RayCounters a, b;
+        for (std::size_t begin = 0; begin < pixels.size(); begin += 150)
+            igi.shade(&pixels[begin], int(std::min<std::size_t>(150, pixels.size() - begin)), 3,
+                      *set, &together[begin], a);
+        int lit = 0;
+        for (std::size_t i = 0; i < pixels.size(); ++i) {
+            const PixelResult alone =
+                igi.shade(pixels[i].x, pixels[i].y, pixels[i].index, 3, *set, b);
+            const PixelResult& t = together[i];
+            ASSERT_TRUE(
+                sameBits(t.irradiance, alone.irradiance) && sameBits(t.glossy, alone.glossy) &&
+                sameBits(t.unfiltered, alone.unfiltered) &&
+                sameBits(t.reflectance, alone.reflectance) && sameBits(t.normal, alone.normal) &&
+                t.depth == alone.depth && t.firstHit == alone.firstHit)
+                << "pixel " << pixels[i].x << ", " << pixels[i].y;
+            lit += luminance(t.irradiance) > 0 && luminance(t.glossy) > 0;
+        }
+        EXPECT_GT(lit, int(pixels.size()) / 4) << "the glossy surfaces are seen and lit";
+        EXPECT_EQ(a.rays, b.rays);
+        EXPECT_EQ(a.shadowRays, b.shadowRays);
+    }
+}
 
 }  // namespace
 }  // namespace igi

@@ -8,6 +8,7 @@
 #include "ConnectionBound.h"
 #include "SurfacePoint.h"
 #include "Vpl.h"
+#include "VplChoice.h"
 #include "igi/CausticGrid.h"
 
 namespace igi {
@@ -45,6 +46,9 @@ struct LightingSet {
     /// turns into its own light samples (choice, then a point on the chosen light).
     std::vector<glm::vec3> directNumbers;
     std::vector<Vpl> indirect;  ///< VPLs from light paths (connections bounded)
+    /// With VPLs by importance: how each point chooses among `indirect` (VplChoice); inactive,
+    /// every point connects to every one.
+    VplChoice vplChoice;
     CausticGrid caustics;  ///< photons from the lights that reached a non-delta surface through
                            ///< mirrors and glass (caustics)
     /// Photons from the VPLs that did (diffuse-specular-diffuse light): smooth light, a few

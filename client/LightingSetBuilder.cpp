@@ -62,9 +62,15 @@ Vpl vplAt(const TraceableScene& scene, const SurfacePoint& hit, const Lobes& lob
 LightingSetBuilder::LightingSetBuilder(const TraceableScene& scene, const Lights& lights,
                                        const RenderSettings& settings)
     : scene_(scene), lights_(lights), settings_(settings), caustics_(scene, lights, settings) {
+    // With VPLs by importance each set keeps a pool, and each point connects to indirectVpls.
+    // IGI's sets only: the other GI modes keep their VPLs (or records made from them) and
+    // connect every one.
+    if (settings.gi == GiMode::Igi && usesVplChoice(settings.vplSampling, lights.count()) &&
+        settings.indirectVpls > 0)
+        vplPool_ = settings.effectiveVplPool();
     vplPaths_ = settings.vplPaths > 0 ? std::uint32_t(settings.vplPaths)
-                                      : pathsFor(settings.indirectVpls, scene.meanAlbedo(),
-                                                 settings.maxLightPathLength);
+                                      : pathsFor(vplPool_ > 0 ? vplPool_ : settings.indirectVpls,
+                                                 scene.meanAlbedo(), settings.maxLightPathLength);
     survivors_ = survivorCounts(vplPaths_, scene.meanAlbedo(), settings.maxLightPathLength);
     minDistance_ = settings.clampDistance * scene.diagonal();
 }
@@ -126,6 +132,14 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
     if (lights_.empty()) return set;
     sampleDirect(frame, setIndex, set);
     if (lightPaths) walkLightPaths(frame, setIndex, set);
+    // The VPLs laid out four-wide, for the connections (and with a pool, the choice among them).
+    // Set k's offset in [k / K, (k + 1) / K): the frame's sets together stratify the choice over
+    // the neighbouring pixels that the discontinuity buffer averages.
+    const float u = Sobol::toFloat(scrambleBits(settings_.seed, frame, SampleStream::VplChoice, 0));
+    const float sets = float(std::max(1, settings_.setCount()));
+    set.vplChoice.prepare(set.indirect,
+                          vplPool_ > 0 ? std::uint32_t(std::max(0, settings_.indirectVpls)) : 0,
+                          std::min((float(setIndex) + u) / sets, 0.99999994f));
     std::uint32_t shot = 0;
     std::vector<CausticPhoton> photons;
     if (caustics && accumulating && settings_.poolCaustics) {

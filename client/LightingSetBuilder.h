@@ -123,6 +123,7 @@ class LightingSetBuilder {
     RenderSettings settings_;
     CausticShooter caustics_;
     std::uint32_t vplPaths_ = 0;
+    int vplPool_ = 0;  ///< VPLs a set's light paths leave for the points to choose from; 0: none
     std::vector<std::uint32_t> survivors_;
     float minDistance_ = 0;         ///< the connection bound's distance at accumulation 0
     mutable std::mutex poolMutex_;  ///< guards pools_

@@ -2,22 +2,10 @@
 
 #include <algorithm>
 
-#include <glm/gtc/type_ptr.hpp>
-
 #include "TraceableScene.h"
 
 namespace igi {
 namespace {
-
-void addInstance(RTCDevice device, RTCScene top, RTCScene object, const glm::mat4& objectToWorld) {
-    RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(instance, object);
-    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
-                            glm::value_ptr(objectToWorld));
-    rtcCommitGeometry(instance);
-    rtcAttachGeometry(top, instance);
-    rtcReleaseGeometry(instance);
-}
 
 bool sameGeometry(const QuadLight& a, const QuadLight& b) {
     return a.corner == b.corner && a.edge1 == b.edge1 && a.edge2 == b.edge2;
@@ -44,13 +32,26 @@ MovedInstances::~MovedInstances() {
 }
 
 RTCScene MovedInstances::build(const SceneGeometry& geometry, const SceneState& state) const {
+    // Laid out as the version of `state` is (in world space or as instances), so that a ray
+    // meets a moved object here exactly where it meets it in that version.
+    const bool flat = geometry.layoutOf(state) == SceneLayout::Flat;
     RTCScene top = rtcNewScene(geometry.device().get());
     rtcSetSceneFlags(top, RTC_SCENE_FLAG_ROBUST);
-    for (std::uint32_t i : meshes_)
-        addInstance(geometry.device().get(), top, geometry.mesh(i), state.transforms[i].matrix());
-    for (std::uint32_t i : lights_)
-        addInstance(geometry.device().get(), top, geometry.unitQuadScene(),
-                    TraceableScene::quadLightMatrix(state.quadLights[i]));
+    std::uint32_t id = 0;
+    for (std::uint32_t i : meshes_) {
+        const glm::mat4 m = state.transforms[i].matrix();
+        if (flat)
+            geometry.attachWorldMesh(top, geometry.scene().meshes[i], m, id++);
+        else
+            geometry.attachInstance(top, geometry.mesh(i), m, id++);
+    }
+    for (std::uint32_t i : lights_) {
+        const glm::mat4 m = TraceableScene::quadLightMatrix(state.quadLights[i]);
+        if (flat)
+            geometry.attachWorldMesh(top, geometry.unitQuad(), m, id++);
+        else
+            geometry.attachInstance(top, geometry.unitQuadScene(), m, id++);
+    }
     rtcCommitScene(top);
     return top;
 }

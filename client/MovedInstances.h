@@ -15,8 +15,9 @@ namespace igi {
 /// The objects (meshes and quad lights) whose placement differs between two states of a scene,
 /// as two small Embree scenes: where they were and where they are. Instant caching's update
 /// (paper 003, Algorithm 1) traces a cached visibility ray against these alone to learn whether
-/// a move can have changed it. The instances are made exactly as TraceableScene makes them, so
-/// a ray blocked in the whole scene by a moved object is blocked here, and the other way round.
+/// a move can have changed it. The objects are laid out exactly as in the TraceableScene of each
+/// state (SceneLayout), so a ray blocked in the whole scene by a moved object is blocked here,
+/// and the other way round.
 class MovedInstances {
   public:
     MovedInstances(const SceneGeometry& geometry, const SceneState& before,

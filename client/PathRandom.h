@@ -17,6 +17,8 @@ class PathRandom {
         : sampler_(sampler), next_(firstDimension) {}
 
     float next() { return sampler_.get(next_++); }
+    /// The dimension the next number comes from: a PathRandom made with it goes on from here.
+    std::uint32_t position() const { return next_; }
     glm::vec2 next2() {
         const float a = next();
         return {a, next()};

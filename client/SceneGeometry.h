@@ -1,24 +1,44 @@
 #pragma once
 
+#include <cstdint>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include <embree3/rtcore.h>
+#include <glm/mat4x4.hpp>
 
 #include "EmbreeDevice.h"
 #include "scene/Scene.h"
+#include "scene/SceneState.h"
 
 namespace igi {
 
+/// How one version of a scene is handed to Embree.
+/// - Flat: every mesh and quad light in world space in one Embree scene, one BVH. A ray crosses
+///   no instance: 1.4 to 1.9 times the shadow rays per second of the instanced layout on the
+///   Cornell scenes (docs/PERFORMANCE.md, section 1), the same hits up to rounding.
+/// - Instanced: each mesh's own BVH (in object space) placed by an instance in a top-level
+///   scene. A move costs a top-level commit only, whatever the meshes' size.
+/// A version is flat when its objects stand where the scene file put them (that BVH is built
+/// once per session) or when the scene is small enough to rebuild one BVH per move
+/// (kFlatRebuildTriangles); a large scene whose objects moved is instanced.
+enum class SceneLayout { Flat, Instanced };
+
 /// The part of a scene that never changes while it renders: one committed Embree scene per mesh
-/// (in object space) and a unit square that quad lights are instances of. Built once per
-/// session; every scene version instances these, so moving an object or a light costs an
-/// instance transform and a top-level commit, not a rebuild.
+/// (in object space), a unit square that quad lights are instances of, and the flat scenes of
+/// the placements in use (the as-loaded one and the latest other). Built once per session and
+/// shared by every scene version.
 class SceneGeometry {
   public:
     SceneGeometry(const EmbreeDevice& device, const Scene& scene);
     ~SceneGeometry();
     SceneGeometry(const SceneGeometry&) = delete;
     SceneGeometry& operator=(const SceneGeometry&) = delete;
+
+    /// Scenes up to this many triangles (about 15 ms of BVH build on one core) get a flat BVH
+    /// of their own after a move; larger ones are instanced until their objects return.
+    static constexpr std::uint64_t kFlatRebuildTriangles = 32768;
 
     const EmbreeDevice& device() const { return device_; }
     const Scene& scene() const { return scene_; }
@@ -27,15 +47,46 @@ class SceneGeometry {
     /// The unit square (0,0,0), (1,0,0), (1,1,0), (0,1,0) as two counter-clockwise triangles.
     const Mesh& unitQuad() const { return unitQuad_; }
     RTCScene unitQuadScene() const { return unitQuadScene_; }
+    /// Triangles of all meshes (quad lights not counted).
+    std::uint64_t triangleCount() const { return triangleCount_; }
+
+    /// The layout of a version in `state`: a function of the scene and the state only, so every
+    /// client chooses the same.
+    SceneLayout layoutOf(const SceneState& state) const;
+    /// The flat Embree scene of `state` (meshes then quad lights, geometry ID i for mesh i and
+    /// meshes + j for quad light j), retained for the caller, who releases it. Thread-safe.
+    RTCScene flatScene(const SceneState& state) const;
+
+    /// Adds `mesh` placed by objectToWorld to `scene` under geometry ID `id`: in world space
+    /// (flat) or as an instance of `object`, its object-space scene. MovedInstances adds moved
+    /// objects in the same way as the version it stands for, so both find the same hits.
+    void attachWorldMesh(RTCScene scene, const Mesh& mesh, const glm::mat4& objectToWorld,
+                         std::uint32_t id) const;
+    void attachInstance(RTCScene scene, RTCScene object, const glm::mat4& objectToWorld,
+                        std::uint32_t id) const;
 
   private:
+    /// Where every object stands: what a flat scene depends on.
+    struct Placement {
+        std::vector<glm::mat4> meshes, quadLights;
+        bool operator==(const Placement&) const = default;
+    };
+    struct FlatScene;
+
     RTCScene build(const Mesh& mesh) const;
+    static Placement placementOf(const SceneState& state);
+    RTCScene buildFlat(const Placement& placement, RTCBuildQuality quality) const;
 
     const EmbreeDevice& device_;
     const Scene& scene_;
     std::vector<RTCScene> meshes_;
     Mesh unitQuad_;
     RTCScene unitQuadScene_ = nullptr;
+    std::uint64_t triangleCount_ = 0;
+    Placement loaded_;  ///< as the scene file put them
+
+    mutable std::mutex flatMutex_;
+    mutable std::shared_ptr<FlatScene> loadedFlat_, latestFlat_;
 };
 
 }  // namespace igi

@@ -16,7 +16,28 @@
 namespace igi {
 namespace {
 
-constexpr int kChunkPixels = 64;  // small enough to balance load, large enough to amortize
+// A chunk is a block of the tile's strided pixel grid, so that the 16 rays of a packet (eye rays,
+// or shadow rays to one VPL) leave from points close together in the image: small enough to
+// balance the load over the threads, large enough to fill packets and amortize.
+constexpr int kChunkColumns = 8, kChunkRows = 8;
+constexpr int kChunkPixels = kChunkColumns * kChunkRows;
+
+int chunkCount(const Tile& tile, int n, int m) {
+    const int columns = tile.columns(n), rows = tile.rows(m);
+    return ((columns + kChunkColumns - 1) / kChunkColumns) * ((rows + kChunkRows - 1) / kChunkRows);
+}
+
+// The tile's pixel indices (row-major in its strided grid) in chunk c; returns their number.
+int chunkPixels(const Tile& tile, int n, int m, int c, int* indices) {
+    const int columns = tile.columns(n), rows = tile.rows(m);
+    const int across = (columns + kChunkColumns - 1) / kChunkColumns;
+    const int x0 = (c % across) * kChunkColumns, y0 = (c / across) * kChunkRows;
+    int count = 0;
+    for (int y = y0; y < std::min(rows, y0 + kChunkRows); ++y)
+        for (int x = x0; x < std::min(columns, x0 + kChunkColumns); ++x)
+            indices[count++] = y * columns + x;
+    return count;
+}
 
 std::unique_ptr<LightingMethod> makeLightingMethod(
     const LightingSetBuilder& builder, const TraceableScene& scene, const SceneState& state,
@@ -77,15 +98,16 @@ void TileRenderer::render(ThreadPool& pool, std::uint32_t frame, std::uint32_t a
     const int count = tile.pixelCount(settings_.interleaveX, settings_.interleaveY);
     const bool path = settings_.integrator == IntegratorKind::Path;
     job->channels.resize(count, path ? std::uint32_t(kUnfiltered) : kAllChannels);
-    const int chunks = (count + kChunkPixels - 1) / kChunkPixels;
+    const int chunks =
+        count > 0 ? chunkCount(tile, settings_.interleaveX, settings_.interleaveY) : 0;
     job->remaining = chunks;
     if (chunks == 0) {
         job->done(proto::TileResult{tileId, job->stats, std::move(job->channels)});
         return;
     }
     for (int c = 0; c < chunks; ++c) {
-        pool.submit([this, job, c, count] {
-            renderChunk(*job, c * kChunkPixels, std::min(count, (c + 1) * kChunkPixels));
+        pool.submit([this, job, c] {
+            renderChunk(*job, c);
             if (job->remaining.fetch_sub(1) == 1)
                 job->done(proto::TileResult{job->tileId, job->stats, std::move(job->channels)});
         });
@@ -101,14 +123,17 @@ proto::TileResult TileRenderer::renderNow(ThreadPool& pool, std::uint32_t frame,
     return future.get();
 }
 
-void TileRenderer::renderChunk(TileJob& job, int begin, int end) {
+void TileRenderer::renderChunk(TileJob& job, int chunk) {
     const auto start = std::chrono::steady_clock::now();
     const int n = settings_.interleaveX, m = settings_.interleaveY;
     RayCounters counters;
     proto::TileStats local;
     TileChannels& out = job.channels;
+    int indices[kChunkPixels];
+    const int count = chunkPixels(job.tile, n, m, chunk, indices);
     if (settings_.integrator == IntegratorKind::Path) {
-        for (int i = begin; i < end; ++i) {
+        for (int k = 0; k < count; ++k) {
+            const int i = indices[k];
             const int x = job.tile.pixelX(i, n), y = job.tile.pixelY(i, n, m);
             out.unfiltered[i] =
                 path_.shade(x, y, std::uint32_t(y * image_.width + x), job.frame, counters);
@@ -125,10 +150,16 @@ void TileRenderer::renderChunk(TileJob& job, int begin, int end) {
             std::uint32_t(set->direct.size() + set->directNumbers.size() + set->indirect.size());
         local.causticPhotons =
             std::uint32_t(set->caustics.photons().size() + set->indirectCaustics.photons().size());
-        for (int i = begin; i < end; ++i) {
-            const int x = job.tile.pixelX(i, n), y = job.tile.pixelY(i, n, m);
-            PixelResult r =
-                igi_.shade(x, y, std::uint32_t(y * image_.width + x), job.frame, *set, counters);
+        IgiIntegrator::Pixel pixels[kChunkPixels];
+        PixelResult results[kChunkPixels];
+        for (int k = 0; k < count; ++k) {
+            const int x = job.tile.pixelX(indices[k], n), y = job.tile.pixelY(indices[k], n, m);
+            pixels[k] = {x, y, std::uint32_t(y * image_.width + x)};
+        }
+        igi_.shade(pixels, count, job.frame, *set, results, counters);
+        for (int k = 0; k < count; ++k) {
+            const int i = indices[k], x = pixels[k].x, y = pixels[k].y;
+            PixelResult& r = results[k];
             if (set->screenCaustics && r.firstHit) {
                 const ScreenCaustics& c = *set->screenCaustics;
                 r.irradiance +=

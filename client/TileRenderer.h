@@ -4,7 +4,6 @@
 #include <functional>
 #include <memory>
 
-#include "scene/CameraModel.h"
 #include "IgiIntegrator.h"
 #include "LightingCache.h"
 #include "LightingMethod.h"
@@ -14,12 +13,14 @@
 #include "PathIntegrator.h"
 #include "TraceableScene.h"
 #include "render/Tile.h"
+#include "scene/CameraModel.h"
 #include "util/ThreadPool.h"
 
 namespace igi {
 
-/// Renders tiles of one scene on all cores: each tile is cut into chunks of pixels that the
-/// pool's threads take as they come, so several tiles in flight keep every core busy. The set
+/// Renders tiles of one scene on all cores: each tile is cut into chunks (blocks of its pixels,
+/// shaded together) that the pool's threads take as they come, so several tiles in flight keep
+/// every core busy. The set
 /// P_k / C_k of a tile comes from the cache (built by the first chunk that needs it).
 class TileRenderer {
   public:
@@ -45,10 +46,11 @@ class TileRenderer {
     const LightingSetBuilder& builder() const { return builder_; }
     const LightingMethod& method() const { return *method_; }
     const Lights& lights() const { return lights_; }
+    const CameraModel& camera() const { return camera_; }
 
   private:
     struct TileJob;
-    void renderChunk(TileJob& job, int begin, int end);
+    void renderChunk(TileJob& job, int chunk);
 
     const TraceableScene& scene_;
     RenderSettings settings_;

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -16,10 +17,11 @@
 
 namespace igi {
 
-/// The traceable form of one version of a scene: the meshes of a SceneGeometry placed by
-/// instances (with the state's transforms) in a top-level Embree scene, the quad lights as
-/// instances of a unit square, and the state's materials. Building one costs a top-level
-/// commit, so each scene epoch gets its own. Read-only once built, safe from many threads.
+/// The traceable form of one version of a scene: the meshes of a SceneGeometry placed with the
+/// state's transforms, the quad lights as unit squares placed on them, and the state's
+/// materials; in one flat BVH or as instances (SceneLayout, chosen by the SceneGeometry). Each
+/// scene epoch gets its own; one whose objects stand as in an earlier one shares its flat BVH.
+/// Read-only once built, safe from many threads.
 class TraceableScene {
   public:
     TraceableScene(const SceneGeometry& geometry, const SceneState& state);
@@ -40,12 +42,37 @@ class TraceableScene {
     /// The same in another Embree scene (one shadow ray, counted).
     static bool occludedIn(RTCScene scene, glm::vec3 origin, glm::vec3 direction, float tfar,
                            RayCounters& counters);
-    /// Up to 8 shadow rays from one origin in one Embree packet (about 1.4x the rays per second
-    /// of single rays, igi-bench): blocked[i] tells whether anything lies along
-    /// origin + t * directions[i], t in (0, tfar[i]), for i < count.
-    static constexpr int kPacket = 8;
-    void occluded8(glm::vec3 origin, const glm::vec3* directions, const float* tfar, int count,
-                   bool* blocked, RayCounters& counters) const;
+
+    /// The widest packet of rays this client traces: 16 (rtcOccluded16, rtcIntersect16) where
+    /// the CPU has AVX-512 and Embree traces 16 rays natively, else 8. On this project's AMD EPYC
+    /// (AVX-512), 16-wide packets of the client's shadow rays ran 1.2x the rays per second of
+    /// 8-wide ones (docs/PERFORMANCE.md, section 1). IGI_PACKET_WIDTH=8 (or 16) in the
+    /// environment overrides the choice, for measurements; images do not depend on it.
+    static constexpr int kMaxPacket = 16;
+    int packetWidth() const { return packetWidth_; }
+    /// For tests: the width to use from now on (8 or 16).
+    void setPacketWidth(int width) { packetWidth_ = width > 8 ? 16 : 8; }
+
+    /// A shadow ray: is anything along origin + t * direction, t in (0, tfar)?
+    struct ShadowRay {
+        glm::vec3 origin{0.0f};
+        glm::vec3 direction{0.0f};
+        float tfar = 0;
+    };
+    /// Up to kMaxPacket shadow rays in one Embree packet (one of packetWidth() where count fits,
+    /// else 16): blocked[i] tells whether ray i is blocked. The answer is the single ray's.
+    void occludedPacket(const ShadowRay* rays, int count, bool* blocked,
+                        RayCounters& counters) const;
+    /// The same for N = 8 or 16 rays written in place by their owner (no copy): set lanes
+    /// [0, count) with set(), then trace.
+    template <int N>
+    struct ShadowPacket;
+    template <int N>
+    void occluded(ShadowPacket<N>& packet, int count, bool* blocked, RayCounters& counters) const;
+    /// Up to kMaxPacket closest-hit rays in one packet, as intersect() each: found[i] tells
+    /// whether ray i hit, and then hits[i] is its hit.
+    void intersectPacket(const glm::vec3* origins, const glm::vec3* directions, const float* tfar,
+                         int count, SurfacePoint* hits, bool* found, RayCounters& counters) const;
 
     /// A triangle in world space, for lights and caustic targets.
     struct WorldTriangle {
@@ -65,7 +92,9 @@ class TraceableScene {
     const SceneGeometry& geometry() const { return geometry_; }
     /// The unit square onto a quad light: x along edge1, y along edge2, z along its normal.
     static glm::mat4 quadLightMatrix(const QuadLight& q);
-    /// The top-level Embree scene, for benchmarks that trace it directly.
+    /// How this version is laid out for Embree (SceneLayout).
+    SceneLayout layout() const { return layout_; }
+    /// The Embree scene every ray is traced in, for benchmarks that trace it directly.
     RTCScene embreeScene() const { return top_; }
     /// Index of the first material made for the quad lights; quad light i uses this + i.
     std::uint32_t quadLightMaterialBase() const { return quadLightMaterialBase_; }
@@ -95,14 +124,19 @@ class TraceableScene {
         int material = -1;  ///< every triangle's material, or -1: the mesh's own per triangle
     };
 
-    void addInstance(const Mesh& mesh, RTCScene scene, const glm::mat4& objectToWorld,
-                     int material);
+    /// Adds a mesh's data (and in the instanced layout, its instance) as the next mesh index;
+    /// `scene` is its object-space Embree scene, null for a mesh without triangles.
+    void addMesh(const Mesh& mesh, RTCScene scene, const glm::mat4& objectToWorld, int material);
     std::uint32_t materialOf(const MeshData& m, std::uint32_t triangle) const {
         return m.material >= 0 ? std::uint32_t(m.material) : m.mesh->materialIds[triangle];
     }
     WorldTriangle worldTriangle(std::uint32_t mesh, std::uint32_t triangle) const;
-    void fillSurfacePoint(const RTCRayHit& rh, SurfacePoint& hit) const;
+    /// The hit of a ray that found primitive `prim` of geometry `geom` (instance `inst` when
+    /// instanced) at barycentrics (u, v), distance t.
+    void fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, std::uint32_t prim, float u,
+                          float v, float t, SurfacePoint& hit) const;
     std::vector<WorldTriangle> trianglesWhere(bool (*predicate)(const Material&)) const;
+    glm::vec3 placedBoundsExtent() const;
     void computeMeanAlbedo(const std::vector<Texture>& textures);
 
     const SceneGeometry& geometry_;
@@ -110,10 +144,57 @@ class TraceableScene {
     const std::vector<Texture>* textures_ = nullptr;
     std::uint32_t quadLightMaterialBase_ = 0;
     std::vector<MeshData> meshes_;
+    SceneLayout layout_ = SceneLayout::Flat;
     RTCScene top_ = nullptr;
     float diagonal_ = 1.0f;
     float meanAlbedo_ = 0.5f;
     std::uint64_t triangleCount_ = 0;
+    int packetWidth_ = 8;
 };
+
+template <int N>
+struct TraceableScene::ShadowPacket {
+    static_assert(N == 8 || N == 16);
+    using Rays = std::conditional_t<N == 8, RTCRay8, RTCRay16>;
+    alignas(64) int valid[N];
+    alignas(64) Rays rays;
+
+    /// The lanes' fixed fields, once: Embree writes only tfar back (-inf on a hit).
+    ShadowPacket() {
+        for (int i = 0; i < N; ++i) {
+            set(i, glm::vec3(0.0f), glm::vec3(0, 0, 1), 0.0f);
+            rays.tnear[i] = 0.0f;
+            rays.mask[i] = 0xFFFFFFFFu;
+            rays.flags[i] = 0;
+            rays.time[i] = 0;
+            rays.id[i] = unsigned(i);
+        }
+    }
+    void set(int lane, glm::vec3 origin, glm::vec3 direction, float tfar) {
+        rays.org_x[lane] = origin.x;
+        rays.org_y[lane] = origin.y;
+        rays.org_z[lane] = origin.z;
+        rays.dir_x[lane] = direction.x;
+        rays.dir_y[lane] = direction.y;
+        rays.dir_z[lane] = direction.z;
+        rays.tfar[lane] = tfar;
+    }
+};
+
+template <int N>
+void TraceableScene::occluded(ShadowPacket<N>& packet, int count, bool* blocked,
+                              RayCounters& counters) const {
+    counters.rays += std::uint64_t(count);
+    counters.shadowRays += std::uint64_t(count);
+    // Lanes past `count` are switched off: Embree reads nothing else of them.
+    for (int i = 0; i < N; ++i) packet.valid[i] = i < count ? -1 : 0;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);  // not COHERENT: see occludedPacket
+    if constexpr (N == 8)
+        rtcOccluded8(packet.valid, top_, &context, &packet.rays);
+    else
+        rtcOccluded16(packet.valid, top_, &context, &packet.rays);
+    for (int i = 0; i < count; ++i) blocked[i] = packet.rays.tfar[i] < 0.0f;  // -inf on a hit
+}
 
 }  // namespace igi

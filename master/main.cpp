@@ -112,6 +112,14 @@ int main(int argc, char** argv) {
                        "how a point chooses the lights it samples: power, tree (by each light's "
                        "estimated contribution there), or auto (tree from 8 emitters on)")
             ->check(CLI::IsMember({"auto", "power", "tree"}));
+    std::string vplSampling;
+    auto* vplSamplingOpt =
+        app.add_option("--vpl-sampling", vplSampling,
+                       "how a point chooses its indirect VPLs: all (every VPL of its set), "
+                       "importance (--vpl-pool VPLs per set, --indirect-vpls of them per point by "
+                       "their estimated contribution there), or auto (importance from 8 emitters "
+                       "on)")
+            ->check(CLI::IsMember({"auto", "all", "importance"}));
     auto* sppOpt = app.add_option("--spp", spp, "path tracer samples per pixel per frame");
     auto* interleaveOpt = app.add_option("--interleave", interleave, "interleaving pattern NxM");
     auto* filterOpt = app.add_option("--filter", filter, "discontinuity buffer size NxM");
@@ -158,7 +166,11 @@ int main(int argc, char** argv) {
         {"--direct-samples", "direct_samples", true,
          "light samples per set (shadow rays per pixel)"},
         {"--vpl-paths", "vpl_paths", true, "light paths per set (0: from --indirect-vpls)"},
-        {"--indirect-vpls", "indirect_vpls", true, "wanted indirect VPLs per set"},
+        {"--indirect-vpls", "indirect_vpls", true,
+         "wanted indirect VPLs per set (per point with --vpl-sampling importance)"},
+        {"--vpl-pool", "vpl_pool", true,
+         "VPLs per set that points choose from with --vpl-sampling importance (0: 8 x "
+         "--indirect-vpls)"},
         {"--max-light-path-length", "max_light_path_length", true, "vertices of a light path"},
         {"--clamp-distance", "clamp_distance", false, "VPL clamp, fraction of the scene diagonal"},
         {"--caustic-photons", "caustic_photons", true, "caustic photons per set"},
@@ -239,6 +251,7 @@ int main(int argc, char** argv) {
         if (integratorOpt->count()) render["integrator"] = integrator;
         if (giOpt->count()) render["gi"] = gi;
         if (lightSamplingOpt->count()) render["light_sampling"] = lightSampling;
+        if (vplSamplingOpt->count()) render["vpl_sampling"] = vplSampling;
         if (sppOpt->count()) render["path_samples"] = spp;
         if (interleaveOpt->count()) render["interleave"] = parsePair(interleave, "--interleave");
         if (filterOpt->count()) render["filter"] = parsePair(filter, "--filter");

@@ -10,7 +10,7 @@ namespace {
 
 // A new field in one of these structs must be added to the codec and to docs/PROTOCOL.md, or
 // it silently never reaches the clients. These sizes make the compiler say so (x86-64 / LP64).
-static_assert(sizeof(RenderSettings) == 176, "RenderSettings changed: update SceneCodec.cpp");
+static_assert(sizeof(RenderSettings) == 184, "RenderSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(ImageSettings) == 12, "ImageSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(Camera) == 40, "Camera changed: update SceneCodec.cpp");
 static_assert(sizeof(SceneBundle) == 2 * sizeof(std::string) + sizeof(SceneBundle::files),
@@ -99,6 +99,8 @@ void writeRenderSettings(ByteWriter& out, const RenderSettings& s) {
     out.i32(s.photonmapNeighbours);
     out.i32(s.photonmapGather);
     out.boolean(s.photonmapScreenCaustics);
+    out.u8(static_cast<std::uint8_t>(s.vplSampling));
+    out.i32(s.vplPool);
 }
 
 RenderSettings readRenderSettings(ByteReader& in) {
@@ -162,6 +164,11 @@ RenderSettings readRenderSettings(ByteReader& in) {
     s.photonmapNeighbours = readInt(in, "photonmapNeighbours", 1, 4096);
     s.photonmapGather = readInt(in, "photonmapGather", 1, 65536);
     s.photonmapScreenCaustics = in.boolean();
+    const std::uint8_t vplSampling = in.u8();
+    if (vplSampling > static_cast<std::uint8_t>(VplSampling::Importance))
+        in.fail("unknown VPL sampling " + std::to_string(vplSampling));
+    s.vplSampling = static_cast<VplSampling>(vplSampling);
+    s.vplPool = readInt(in, "vplPool", 0, 100000);
     return s;
 }
 

@@ -97,6 +97,38 @@ TEST(EndToEnd, TwoClientsRenderTheDefaultSceneExactlyAsOneDoes) {
     fs::remove_all(dir);
 }
 
+// With many lights each point chooses its light samples (the light tree) and its VPLs (by
+// importance, from a pool per set) for itself: still a function of the pixel, the frame and the
+// set only, so the image does not depend on which client rendered which tile.
+TEST(EndToEnd, ThreeClientsRenderAManyLightSceneExactlyAsOneDoes) {
+    const fs::path dir = scratchDir("many-lights");
+    const std::string scene = (sourceDir() / "scenes/interior/glossy.json").string();
+    const std::vector<std::string> common = {"--scene",  scene,        "--width",  "120",
+                                             "--height", "90",         "--frames", "3",
+                                             "--listen", "127.0.0.1:0"};
+    auto args3 = common, args1 = common;
+    args3.insert(args3.end(), {"--local-clients", "3", "--output", (dir / "three.exr").string(),
+                               "--stats-json", (dir / "three.json").string()});
+    args1.insert(args1.end(), {"--local-clients", "1", "--output", (dir / "one.exr").string()});
+    const ProcessResult three = runMaster(dir, "three", args3), one = runMaster(dir, "one", args1);
+    ASSERT_EQ(three.exitCode, 0) << three.output;
+    ASSERT_EQ(one.exitCode, 0) << one.output;
+    const Image a = readImage(dir / "three.exr"), b = readImage(dir / "one.exr");
+    expectFinite(a, "three.exr");
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        ASSERT_EQ(a.pixels[i], b.pixels[i]) << "pixel " << i % 120 << "," << i / 120 << " differs";
+    std::ifstream statsFile(dir / "three.json");
+    const auto stats = nlohmann::json::parse(statsFile);
+    // The sets hold a pool (8 x 18 VPLs by default), of which each point connects to 18 at most
+    // (a glossy point's continuation reaches a second point, which connects to 18 more).
+    EXPECT_GT(stats["frames"][1]["vpls"].get<double>(), 100.0);
+    EXPECT_LT(stats["frames"][1]["shadow_rays_per_pixel"].get<double>(), 60.0);
+    int busy = 0;
+    for (const auto& c : stats["clients"]) busy += c["tiles"].get<std::uint64_t>() > 0;
+    EXPECT_EQ(busy, 3);
+    fs::remove_all(dir);
+}
+
 TEST(EndToEnd, ABadSceneFileIsAClearErrorAndANonZeroExit) {
     const fs::path dir = scratchDir("bad");
     std::ofstream(dir / "bad.json")

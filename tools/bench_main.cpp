@@ -1,11 +1,12 @@
 // igi-bench: how close a client comes to the hardware's limit. On one scene and one machine, side
 // by side in one run, it measures
 //   - raw Embree occlusion throughput: random shadow segments with rtcOccluded1 and in packets of
-//     8 (rtcOccluded8), on the given number of threads;
+//     8 and 16 (rtcOccluded8, rtcOccluded16), on the given number of threads;
 //   - a client's throughput rendering whole frames of tiles (IGI, every ray counted);
 // and reports the ratio. Results go to stdout as JSON.
 #include <atomic>
 #include <chrono>
+#include <ctime>
 #include <functional>
 #include <iostream>
 
@@ -33,6 +34,23 @@ double seconds(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// CPU time of the whole process (every thread): on a machine shared with others, rays per CPU
+// second move far less with their load than rays per second of wall time. The calling thread
+// only waits while the pool works, so this is the pool's time.
+double processCpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+// Wall and CPU seconds of one measurement.
+struct Timing {
+    Clock::time_point wallStart = Clock::now();
+    double cpuStart = processCpuSeconds();
+    double wall() const { return seconds(wallStart); }
+    double cpu() const { return processCpuSeconds() - cpuStart; }
+};
+
 // Calls chunk(c) for every chunk c < count on the pool's threads only, as the client renders
 // tiles: ThreadPool::parallelFor would put the calling thread to work as well, one thread more
 // than the client gets (which once made the raw figures look twice as fast on one thread).
@@ -46,11 +64,17 @@ void forEachChunkOnPool(std::size_t count, igi::ThreadPool& pool,
     pool.waitIdle();
 }
 
+// Rays per second of wall time and per CPU second.
+struct Rate {
+    double wall = 0, cpu = 0;
+    Rate(double rays, const Timing& t) : wall(rays / t.wall()), cpu(rays / t.cpu()) {}
+};
+
 // Shadow rays per second through rtcOccluded1, one ray at a time.
-double occluded1(RTCScene scene, const std::vector<igi::ShadowSegment>& segs, igi::ThreadPool& pool,
-                 std::size_t& blocked) {
+Rate occluded1(RTCScene scene, const std::vector<igi::ShadowSegment>& segs, igi::ThreadPool& pool,
+               std::size_t& blocked) {
     std::atomic<std::size_t> hits{0};
-    const auto start = Clock::now();
+    const Timing timing;
     forEachChunkOnPool((segs.size() + kChunk - 1) / kChunk, pool, [&](std::size_t c) {
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
@@ -70,21 +94,22 @@ double occluded1(RTCScene scene, const std::vector<igi::ShadowSegment>& segs, ig
         hits += local;
     });
     blocked = hits;
-    return double(segs.size()) / seconds(start);
+    return Rate(double(segs.size()), timing);
 }
 
-// Shadow rays per second through rtcOccluded8: packets of 8 consecutive segments.
-double occluded8(RTCScene scene, const std::vector<igi::ShadowSegment>& segs,
-                 igi::ThreadPool& pool) {
-    const auto start = Clock::now();
+// Shadow rays per second through rtcOccluded8 or rtcOccluded16: packets of N consecutive
+// segments.
+template <int N, typename Packet>
+Rate occludedN(RTCScene scene, const std::vector<igi::ShadowSegment>& segs, igi::ThreadPool& pool) {
+    const Timing timing;
     forEachChunkOnPool((segs.size() + kChunk - 1) / kChunk, pool, [&](std::size_t c) {
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         const std::size_t end = std::min(segs.size(), (c + 1) * kChunk);
-        for (std::size_t i = c * kChunk; i < end; i += 8) {
-            alignas(32) int valid[8];
-            alignas(32) RTCRay8 ray{};
-            for (int j = 0; j < 8; ++j) {
+        for (std::size_t i = c * kChunk; i < end; i += N) {
+            alignas(64) int valid[N];
+            alignas(64) Packet ray{};
+            for (int j = 0; j < N; ++j) {
                 const std::size_t k = i + j;
                 valid[j] = k < end ? -1 : 0;
                 if (k >= end) continue;
@@ -96,10 +121,13 @@ double occluded8(RTCScene scene, const std::vector<igi::ShadowSegment>& segs,
                 ray.tfar[j] = segs[k].length;
                 ray.mask[j] = 0xFFFFFFFFu;
             }
-            rtcOccluded8(valid, scene, &context, &ray);
+            if constexpr (N == 8)
+                rtcOccluded8(valid, scene, &context, &ray);
+            else
+                rtcOccluded16(valid, scene, &context, &ray);
         }
     });
-    return double(segs.size()) / seconds(start);
+    return Rate(double(segs.size()), timing);
 }
 
 }  // namespace
@@ -110,7 +138,7 @@ int main(int argc, char** argv) {
     unsigned threads = 0;
     std::size_t segments = 4'000'000;
     int frames = 4, width = 0, height = 0;
-    bool allowOutsidePaths = false;
+    bool allowOutsidePaths = false, accumulated = false;
     app.add_option("--scene", sceneFile, "scene file or .obj")->required();
     app.add_flag("--allow-outside-paths", allowOutsidePaths,
                  "let the scene file name files outside its own folder");
@@ -119,6 +147,9 @@ int main(int argc, char** argv) {
     app.add_option("--segments", segments, "random shadow segments for the raw measurement")
         ->capture_default_str();
     app.add_option("--frames", frames, "frames the client renders")->capture_default_str();
+    app.add_flag("--accumulated", accumulated,
+                 "render the frames as frames 1.. of an accumulation (a view held still: the "
+                 "converging estimator), not each as the first frame after a change");
     app.add_option("--width", width, "image width (0: the scene's)");
     app.add_option("--height", height, "image height (0: the scene's)");
     CLI11_PARSE(app, argc, argv);
@@ -137,8 +168,9 @@ int main(int argc, char** argv) {
         const auto segs = igi::randomShadowSegments(traceable, segments, 12345);
         std::size_t blocked = 0;
         occluded1(traceable.embreeScene(), segs, pool, blocked);  // warm up caches and threads
-        const double raw1 = occluded1(traceable.embreeScene(), segs, pool, blocked);
-        const double raw8 = occluded8(traceable.embreeScene(), segs, pool);
+        const Rate raw1 = occluded1(traceable.embreeScene(), segs, pool, blocked);
+        const Rate raw8 = occludedN<8, RTCRay8>(traceable.embreeScene(), segs, pool);
+        const Rate raw16 = occludedN<16, RTCRay16>(traceable.embreeScene(), segs, pool);
 
         igi::TileRenderer renderer(traceable, igi::SceneState::of(scene), scene.render, scene.image,
                                    igi::LightingContext{&scene, 0, 0, nullptr});
@@ -146,14 +178,14 @@ int main(int argc, char** argv) {
         const auto tiles = igi::makeTiles(scene.image.width, scene.image.height, s.interleaveX,
                                           s.interleaveY, s.tileSize);
         std::uint64_t rays = 0, shadowRays = 0;
-        const auto start = Clock::now();
+        const Timing timing;
         for (int f = 0; f < frames; ++f) {
             std::atomic<std::size_t> remaining{tiles.size()};
             std::mutex mutex;
             std::condition_variable done;
             for (std::uint32_t t = 0; t < tiles.size(); ++t) {
-                renderer.render(pool, std::uint32_t(f), 0, t, tiles[t],
-                                [&](igi::proto::TileResult&& r) {
+                renderer.render(pool, std::uint32_t(f), accumulated ? std::uint32_t(f + 1) : 0, t,
+                                tiles[t], [&](igi::proto::TileResult&& r) {
                                     std::lock_guard lock(mutex);
                                     rays += r.stats.rays;
                                     shadowRays += r.stats.shadowRays;
@@ -163,24 +195,39 @@ int main(int argc, char** argv) {
             std::unique_lock lock(mutex);
             done.wait(lock, [&] { return remaining == 0; });
         }
-        const double renderSeconds = seconds(start);
-        const double clientShadow = double(shadowRays) / renderSeconds,
-                     clientRays = double(rays) / renderSeconds;
+        const double renderSeconds = timing.wall(), renderCpu = timing.cpu();
+        const Rate clientShadow(double(shadowRays), timing), clientRays(double(rays), timing);
 
-        nlohmann::json out{{"scene", sceneFile},
-                           {"triangles", traceable.triangleCount()},
-                           {"threads", pool.size()},
-                           {"segments", segs.size()},
-                           {"segments_blocked", double(blocked) / double(segs.size())},
-                           {"embree_occluded1_rays_per_second", raw1},
-                           {"embree_occluded8_rays_per_second", raw8},
-                           {"client_frames", frames},
-                           {"client_width", scene.image.width},
-                           {"client_height", scene.image.height},
-                           {"client_seconds", renderSeconds},
-                           {"client_rays_per_second", clientRays},
-                           {"client_shadow_rays_per_second", clientShadow},
-                           {"client_rays_over_embree_occluded1", clientRays / raw1}};
+        nlohmann::json out{
+            {"scene", sceneFile},
+            {"triangles", traceable.triangleCount()},
+            {"threads", pool.size()},
+            {"segments", segs.size()},
+            {"segments_blocked", double(blocked) / double(segs.size())},
+            {"embree_occluded1_rays_per_second", raw1.wall},
+            {"embree_occluded8_rays_per_second", raw8.wall},
+            {"embree_occluded16_rays_per_second", raw16.wall},
+            {"embree_occluded1_rays_per_cpu_second", raw1.cpu},
+            {"embree_occluded8_rays_per_cpu_second", raw8.cpu},
+            {"embree_occluded16_rays_per_cpu_second", raw16.cpu},
+            {"client_packet_width", traceable.packetWidth()},
+            {"scene_layout", traceable.layout() == igi::SceneLayout::Flat ? "flat" : "instanced"},
+            {"client_accumulated", accumulated},
+            {"client_frames", frames},
+            {"client_width", scene.image.width},
+            {"client_height", scene.image.height},
+            {"client_seconds", renderSeconds},
+            {"client_cpu_seconds", renderCpu},
+            {"client_rays", rays},
+            {"client_shadow_rays", shadowRays},
+            {"client_rays_per_second", clientRays.wall},
+            {"client_shadow_rays_per_second", clientShadow.wall},
+            {"client_rays_per_cpu_second", clientRays.cpu},
+            {"client_shadow_rays_per_cpu_second", clientShadow.cpu},
+            {"client_rays_over_embree_occluded1", clientRays.wall / raw1.wall},
+            {"client_shadow_rays_over_embree_occluded8", clientShadow.wall / raw8.wall},
+            {"client_shadow_rays_over_embree_occluded16", clientShadow.wall / raw16.wall},
+            {"client_shadow_rays_over_embree_occluded16_cpu", clientShadow.cpu / raw16.cpu}};
         std::cout << out.dump(2) << '\n';
         return 0;
     } catch (const std::exception& e) {

@@ -3,6 +3,7 @@
 #include <bit>
 #include <cmath>
 
+#include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
 namespace igi {
@@ -24,6 +25,18 @@ CausticGrid::CausticGrid(std::vector<CausticPhoton> photons, float radius)
     photons_.resize(photons.size());
     std::vector<std::uint32_t> next(bucketStart_.begin(), bucketStart_.end() - 1);
     for (std::size_t i = 0; i < photons.size(); ++i) photons_[next[bucket[i]]++] = photons[i];
+    // Grown by the radius and a margin, so that the test in forEachNear never turns away a point
+    // within the radius of a photon (such a point lies within the radius of the box).
+    if (photons_.empty()) return;
+    lo_ = hi_ = photons_[0].position;
+    for (const CausticPhoton& p : photons_) {
+        lo_ = glm::min(lo_, p.position);
+        hi_ = glm::max(hi_, p.position);
+    }
+    const glm::vec3 margin =
+        glm::vec3(radius * 1.001f) + 1e-6f * glm::max(glm::abs(lo_), glm::abs(hi_));
+    lo_ -= margin;
+    hi_ += margin;
 }
 
 std::uint32_t CausticGrid::hashCell(std::int64_t x, std::int64_t y, std::int64_t z) {

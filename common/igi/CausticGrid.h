@@ -37,6 +37,7 @@ class CausticGrid {
 
     float radius_ = 0;
     float invCell_ = 0;
+    glm::vec3 lo_{0.0f}, hi_{0.0f};  ///< the photons' bounds, grown by the radius
     std::uint32_t mask_ = 0;
     std::vector<CausticPhoton> photons_;      ///< sorted by bucket
     std::vector<std::uint32_t> bucketStart_;  ///< mask_ + 2 entries
@@ -45,6 +46,9 @@ class CausticGrid {
 template <typename F>
 void CausticGrid::forEachNear(glm::vec3 p, F&& f) const {
     if (photons_.empty()) return;
+    // Most points see no caustic at all: one box test spares them the eight lookups.
+    if (p.x < lo_.x || p.y < lo_.y || p.z < lo_.z || p.x > hi_.x || p.y > hi_.y || p.z > hi_.z)
+        return;
     const float r2 = radius_ * radius_;
     const glm::dvec3 scaled = glm::dvec3(p) * double(invCell_) - 0.5;
     const std::int64_t bx = std::int64_t(std::floor(scaled.x));

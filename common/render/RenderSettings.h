@@ -81,6 +81,22 @@ inline bool usesLightTree(LightSampling sampling, std::size_t lights) {
            (sampling == LightSampling::Auto && lights >= kLightTreeMinLights);
 }
 
+/// How a point chooses the indirect VPLs it connects to (client/VplChoice.h).
+enum class VplSampling : std::uint8_t {
+    Auto,        ///< Importance from kLightTreeMinLights emitters on, All below
+    All,         ///< every VPL of its set (the paper's)
+    Importance,  ///< vplPool VPLs per set, indirectVpls of them per point, by importance
+};
+
+inline bool usesVplChoice(VplSampling sampling, std::size_t lights) {
+    return sampling == VplSampling::Importance ||
+           (sampling == VplSampling::Auto && lights >= kLightTreeMinLights);
+}
+
+/// The pool a set keeps when VPLs are chosen by importance and vplPool is 0: this many times the
+/// VPLs each point connects to.
+constexpr int kVplPoolFactor = 8;
+
 /// What restores the energy that bounding the VPL connections removes.
 enum class ClampCompensation : std::uint8_t {
     Off,           ///< nothing: the bound's energy is lost (the paper's estimator)
@@ -106,8 +122,14 @@ struct RenderSettings {
     LightSampling lightSampling = LightSampling::Auto;
 
     // Indirect light from virtual point lights (VPLs).
-    int vplPaths = 0;       ///< light paths per set; 0 derives it from indirectVpls
-    int indirectVpls = 18;  ///< wanted indirect VPLs per set when vplPaths is 0
+    int vplPaths = 0;  ///< light paths per set; 0 derives it from indirectVpls
+    int indirectVpls =
+        18;  ///< wanted indirect VPLs per set (per point with a pool) when vplPaths is 0
+    VplSampling vplSampling = VplSampling::Auto;
+    /// With VPLs chosen by importance: the VPLs each set's light paths leave (when vplPaths is
+    /// 0), of which each point connects to indirectVpls; 0: kVplPoolFactor x indirectVpls.
+    int vplPool = 0;
+    int effectiveVplPool() const { return vplPool > 0 ? vplPool : kVplPoolFactor * indirectVpls; }
     /// Vertices of a light path, the one on the light included, in Keller's quasi-random walk
     /// (stratified over the paths); with `roulette`, the paths alive at its end go on.
     int maxLightPathLength = 4;

@@ -73,6 +73,14 @@ void readIgiLighting(const JsonNode& section, RenderSettings& s) {
     // Light paths per set; 0 derives them from indirect_vpls.
     readInt(section, "vpl_paths", 0, 100000, s.vplPaths);
     readInt(section, "indirect_vpls", 0, 100000, s.indirectVpls);
+    // How a point chooses among its set's VPLs, and the pool it chooses from.
+    if (auto v = section.find("vpl_sampling")) {
+        const std::string how = v->choice({"auto", "all", "importance"});
+        s.vplSampling = how == "auto"  ? VplSampling::Auto
+                        : how == "all" ? VplSampling::All
+                                       : VplSampling::Importance;
+    }
+    readInt(section, "vpl_pool", 0, 100000, s.vplPool);
     // Vertices of a light path, the one on the light included.
     readInt(section, "max_light_path_length", 1, 64, s.maxLightPathLength);
     // Fraction of the scene's bounding-box diagonal.
@@ -163,6 +171,8 @@ void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& setting
                        "light_sampling",
                        "vpl_paths",
                        "indirect_vpls",
+                       "vpl_sampling",
+                       "vpl_pool",
                        "max_light_path_length",
                        "clamp_distance",
                        "caustic_photons",

@@ -38,6 +38,28 @@ TEST(RenderSettingsJson, LightSamplingChoices) {
     EXPECT_FALSE(usesLightTree(LightSampling::Power, 1000));
 }
 
+TEST(RenderSettingsJson, VplSamplingChoicesAndPool) {
+    RenderSettings s;
+    EXPECT_EQ(s.vplSampling, VplSampling::Auto);
+    EXPECT_EQ(s.effectiveVplPool(), kVplPoolFactor * s.indirectVpls);
+    for (const auto& [name, value] :
+         {std::pair{"all", VplSampling::All}, std::pair{"importance", VplSampling::Importance},
+          std::pair{"auto", VplSampling::Auto}}) {
+        applyRenderSettingsJson(nlohmann::json{{"vpl_sampling", name}}, s, "f", "");
+        EXPECT_EQ(s.vplSampling, value) << name;
+    }
+    applyRenderSettingsJson(nlohmann::json{{"vpl_pool", 100}, {"indirect_vpls", 9}}, s, "f", "");
+    EXPECT_EQ(s.effectiveVplPool(), 100);
+    EXPECT_THROW(applyRenderSettingsJson(nlohmann::json{{"vpl_sampling", "tree"}}, s, "f", ""),
+                 SceneError);
+    EXPECT_THROW(applyRenderSettingsJson(nlohmann::json{{"vpl_pool", -1}}, s, "f", ""), SceneError);
+    // Auto: by importance from kLightTreeMinLights emitters on, as the light tree.
+    EXPECT_FALSE(usesVplChoice(VplSampling::Auto, kLightTreeMinLights - 1));
+    EXPECT_TRUE(usesVplChoice(VplSampling::Auto, kLightTreeMinLights));
+    EXPECT_TRUE(usesVplChoice(VplSampling::Importance, 1));
+    EXPECT_FALSE(usesVplChoice(VplSampling::All, 1000));
+}
+
 // "converge" sets every mean of the converging estimator at once; keys beside it win.
 TEST(RenderSettingsJson, ConvergeSetsEveryMeanAndKeysBesideItWin) {
     RenderSettings s;
