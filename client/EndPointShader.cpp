@@ -24,17 +24,6 @@ float residualWeight(const ConnectionBound* residual, float sharpness) {
     return residual ? 1.0f - residual->kept(sharpness) : 1.0f;
 }
 
-// Bit i set where lane i of the mask is (all bits set or not).
-std::uint32_t laneBits(Float4 mask) {
-#if defined(__SSE2__)
-    return std::uint32_t(_mm_movemask_ps(mask.v));
-#else
-    std::uint32_t bits = 0;
-    for (int i = 0; i < 4; ++i) bits |= std::uint32_t(mask.v[i] != 0) << i;
-    return bits;
-#endif
-}
-
 float maxSharpnessOf(const std::vector<Material>& materials) {
     float s = 1.0f;
     for (const Material& m : materials)

@@ -1,8 +1,9 @@
 #pragma once
 
 // Four floats computed lane by lane: SSE where the compiler targets it (every x86-64), plain
-// arrays elsewhere. Only what the light tree and the discontinuity buffer need; every operation is
-// IEEE-exact per lane (no approximate reciprocals), so both versions give the same bits.
+// arrays elsewhere. Only what the light tree, the discontinuity buffer and the VPL choice need;
+// every operation is IEEE-exact per lane (no approximate reciprocals; prefix sums in one fixed
+// order), so both versions give the same bits.
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #else
@@ -69,6 +70,25 @@ inline Float4 operator|(Float4 a, Float4 b) {
 inline Float4 select(Float4 mask, Float4 a, Float4 b) {
     return Float4(_mm_or_ps(_mm_and_ps(mask.v, a.v), _mm_andnot_ps(mask.v, b.v)));
 }
+/// Bit i set where lane i of the mask is set.
+inline unsigned laneBits(Float4 mask) { return unsigned(_mm_movemask_ps(mask.v)); }
+/// Inclusive prefix sums of the lanes, added as [a0, a0+a1, a0+(a1+a2), (a0+a1)+(a2+a3)].
+inline Float4 prefixSum(Float4 a) {
+    a.v = _mm_add_ps(a.v, _mm_castsi128_ps(_mm_slli_si128(_mm_castps_si128(a.v), 4)));
+    return Float4(_mm_add_ps(a.v, _mm_castsi128_ps(_mm_slli_si128(_mm_castps_si128(a.v), 8))));
+}
+/// Lane 3 in every lane.
+inline Float4 lastLane(Float4 a) { return Float4(_mm_shuffle_ps(a.v, a.v, 0xFF)); }
+/// [first, a0, a1, a2].
+inline Float4 shiftIn(Float4 a, float first) {
+    const __m128 shifted = _mm_castsi128_ps(_mm_slli_si128(_mm_castps_si128(a.v), 4));
+    return Float4(_mm_move_ss(shifted, _mm_set_ss(first)));
+}
+/// Rounded up, for lanes in [0, 2^31).
+inline Float4 ceilNonNegative(Float4 a) {
+    const __m128 down = _mm_cvtepi32_ps(_mm_cvttps_epi32(a.v));
+    return Float4(_mm_add_ps(down, _mm_and_ps(_mm_cmpgt_ps(a.v, down), _mm_set1_ps(1.0f))));
+}
 #else
 struct Float4 {
     float v[4];
@@ -133,6 +153,27 @@ inline Float4 operator|(Float4 a, Float4 b) {
 }
 inline Float4 select(Float4 mask, Float4 a, Float4 b) {
     return Float4::map([&](int i) { return mask.v[i] != 0 ? a.v[i] : b.v[i]; });
+}
+inline unsigned laneBits(Float4 mask) {
+    unsigned bits = 0;
+    for (int i = 0; i < 4; ++i) bits |= unsigned(mask.v[i] != 0) << i;
+    return bits;
+}
+inline Float4 prefixSum(Float4 a) {
+    const float s1 = a.v[0] + a.v[1];
+    Float4 r;
+    r.v[0] = a.v[0], r.v[1] = s1, r.v[2] = a.v[0] + (a.v[1] + a.v[2]);
+    r.v[3] = s1 + (a.v[2] + a.v[3]);
+    return r;
+}
+inline Float4 lastLane(Float4 a) { return Float4(a.v[3]); }
+inline Float4 shiftIn(Float4 a, float first) {
+    Float4 r;
+    r.v[0] = first, r.v[1] = a.v[0], r.v[2] = a.v[1], r.v[3] = a.v[2];
+    return r;
+}
+inline Float4 ceilNonNegative(Float4 a) {
+    return Float4::map([&](int i) { return std::ceil(a.v[i]); });
 }
 #endif
 
