@@ -788,15 +788,23 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
     w("")
 
     # Section 6 comes from its own script; its block is carried over from the current document.
-    w("## 6. Many lights: light samples by power or by a light tree")
+    w("## 6. Many lights: light samples and VPLs by power or by importance")
     w("")
-    w("`scripts/bench_many_lights.sh` (its own script: about 25 minutes the first time) renders "
-      "the interior lit by 96 small ceiling lights (`scenes/interior/diffuse.json`, "
-      "`glossy.json`, and `sculptures.json`, the same room with 133,000 triangles of ceramic "
-      "pieces) with IGI and with our path tracer, each point's light samples chosen by power "
-      "(`--light-sampling power`, the paper's) or by the light tree (`tree`, client/LightTree.h; "
-      "`auto` picks it from 8 emitters on), and compares each image with a path-traced "
-      "reference. `igi-tree-1` is the tree with one direct sample per pixel instead of 4.")
+    w("`scripts/bench_many_lights.sh` (its own script: about an hour the first time, for the "
+      "references) renders scenes lit by many small lights with IGI and with our path tracer and "
+      "compares each image with a path-traced reference: the interior lit by 96 small ceiling "
+      "lights (`scenes/interior/diffuse.json`, `glossy.json`; `sculptures.json` adds 133,000 "
+      "triangles of ceramic pieces) and the Sponza atrium with the Stanford bunny, 210,496 "
+      "triangles lit by 120 small lights under its arcades on three floors "
+      "(`scenes/sponza/arcades.json`, written by `scripts/make_sponza_scene.py`; its meshes come "
+      "from `../shared/scenes`). Variants: `igi-power` is the paper's IGI (light samples by "
+      "power, `--light-sampling power`, and every point connected to every VPL of its set, "
+      "`--vpl-sampling all`); `igi-tree` takes its light samples from the light tree "
+      "(client/LightTree.h); `igi-importance` also chooses each point's VPLs by importance "
+      "(`--vpl-sampling importance`, client/VplChoice.h: each set's light paths leave a pool of "
+      "8 x 18 VPLs and each point connects to 18 of them, drawn by what each can give it), what "
+      "`auto` picks from 8 emitters on. The path tracer takes one light sample per vertex by "
+      "power or by the tree.")
     w("")
     w("<!-- BEGIN GENERATED many-lights -->")
     w(generated_block(doc, "many-lights") or "Not measured yet: run scripts/bench_many_lights.sh.")
