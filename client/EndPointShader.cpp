@@ -232,8 +232,8 @@ void EndPointShader::connectLambertian(const ShadingPoint& x, const LightingSet&
                                     Float4::load(&l.nz[j]) * wz);
         const Float4 g = cosX * cosY / max(d2, m2);
         // The scalar tests, negated as there: a NaN cosine is not rejected, a NaN d2 is.
-        const Float4 reject = notGreater(d2, zero) | lessEqual(cosX, zero) |
-                              lessEqual(face, zero) | lessEqual(cosY, zero);
+        const Float4 reject = notGreater(d2, zero) | lessEqual(cosX, zero) | lessEqual(face, zero) |
+                              lessEqual(cosY, zero);
         std::uint32_t lanes = ~laneBits(reject) & 0xFu;
         if (l.anyGlossy) lanes |= l.glossyBits(j);  // these take the general connection
         if (j + 4 > count) lanes &= (1u << (count - j)) - 1u;

@@ -69,7 +69,11 @@ std::uint32_t VplChoice::choose(glm::vec3 origin, glm::vec3 n, glm::vec3 f, floa
     float below = 0;  // samples below the previous VPL's CDF
     for (std::size_t i = 0; i < padded && below < draws; i += 4) {
         const Float4 cdf = a4 * Float4::load(&sumW[i]) + b4 * Float4::load(&sumR[i]);
-        const Float4 upTo = ceilNonNegative(min(max(draws4 * cdf - offset4, zero), draws4));
+        const Float4 raw = ceilNonNegative(min(max(draws4 * cdf - offset4, zero), draws4));
+        // The running sums rise lane by lane but the fourth, summed as (w0 + w1) + (w2 + w3),
+        // may round an ulp below the third's w0 + (w1 + w2): the counts must not fall (a fall
+        // would hand a sample out twice).
+        const Float4 upTo = max(raw, shiftIn(raw, below));
         const Float4 times = upTo - shiftIn(upTo, below);
         const unsigned took = laneBits(greater(times, zero));
         float t[4];
@@ -90,8 +94,7 @@ std::uint32_t VplChoice::choose(glm::vec3 origin, glm::vec3 n, glm::vec3 f, floa
         if (last-- == 0) return 0;  // cannot happen: some VPL is reachable
         const float p = a * weight[last] + b;
         float times = draws - below;
-        if (picked > 0 && out[picked - 1].index == last)
-            times += out[--picked].scale * draws * p;
+        if (picked > 0 && out[picked - 1].index == last) times += out[--picked].scale * draws * p;
         out[picked++] = {std::uint32_t(last), std::round(times) / (draws * p)};
     }
     return picked;

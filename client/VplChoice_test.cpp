@@ -72,6 +72,38 @@ TEST(VplChoice, ChosenVplsEstimateTheSumOverThePool) {
     }
 }
 
+// Whatever the weights (many orders of magnitude apart, many zero, pools of any size), a point
+// gets at most perPoint picks in increasing order, each with a finite positive weight, and
+// nothing is written past them.
+TEST(VplChoice, PicksStayWithinTheirCountForAnyWeights) {
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int trial = 0; trial < 2000; ++trial) {
+        auto vpls = scatteredVpls(1 + int(u(random) * 200), random);
+        for (Vpl& v : vpls) v.power *= std::pow(10.0f, 12 * u(random) - 6);
+        for (Vpl& v : vpls)
+            if (u(random) < 0.3f) v.power = glm::vec3(0.0f);
+        const std::uint32_t perPoint = 1 + std::uint32_t(u(random) * 40);
+        VplChoice choice;
+        choice.prepare(vpls, perPoint, u(random) * 0.999999f);
+        const VplChoice::Pick sentinel{0xDEADBEEFu, -7.0f};
+        std::vector<VplChoice::Pick> picks(perPoint + 1, sentinel);
+        const glm::vec3 x(8 * u(random) - 4, 3 * u(random), 6 * u(random) - 3);
+        const glm::vec3 n =
+            glm::normalize(glm::vec3(u(random) - 0.5f, u(random), u(random) - 0.5f));
+        const std::uint32_t chosen = choice.choose(x, n, n, 0.01f, picks.data());
+        ASSERT_LE(chosen, perPoint) << "trial " << trial;
+        EXPECT_EQ(picks[perPoint].index, sentinel.index) << "trial " << trial;
+        for (std::uint32_t i = 0; i < chosen; ++i) {
+            if (i > 0) {
+                ASSERT_LT(picks[i - 1].index, picks[i].index) << "trial " << trial;
+            }
+            ASSERT_LT(picks[i].index, vpls.size());
+            ASSERT_TRUE(std::isfinite(picks[i].scale) && picks[i].scale > 0) << "trial " << trial;
+        }
+    }
+}
+
 // The importance follows the contribution: a point next to one bright VPL spends most of its
 // choices on it, and one shadow ray carries them all.
 TEST(VplChoice, ANearBrightVplIsChosenOnceForManySamples) {

@@ -71,14 +71,18 @@ inline Float4 select(Float4 mask, Float4 a, Float4 b) {
     return Float4(_mm_or_ps(_mm_and_ps(mask.v, a.v), _mm_andnot_ps(mask.v, b.v)));
 }
 /// Bit i set where lane i of the mask is set.
-inline unsigned laneBits(Float4 mask) { return unsigned(_mm_movemask_ps(mask.v)); }
+inline unsigned laneBits(Float4 mask) {
+    return unsigned(_mm_movemask_ps(mask.v));
+}
 /// Inclusive prefix sums of the lanes, added as [a0, a0+a1, a0+(a1+a2), (a0+a1)+(a2+a3)].
 inline Float4 prefixSum(Float4 a) {
     a.v = _mm_add_ps(a.v, _mm_castsi128_ps(_mm_slli_si128(_mm_castps_si128(a.v), 4)));
     return Float4(_mm_add_ps(a.v, _mm_castsi128_ps(_mm_slli_si128(_mm_castps_si128(a.v), 8))));
 }
 /// Lane 3 in every lane.
-inline Float4 lastLane(Float4 a) { return Float4(_mm_shuffle_ps(a.v, a.v, 0xFF)); }
+inline Float4 lastLane(Float4 a) {
+    return Float4(_mm_shuffle_ps(a.v, a.v, 0xFF));
+}
 /// [first, a0, a1, a2].
 inline Float4 shiftIn(Float4 a, float first) {
     const __m128 shifted = _mm_castsi128_ps(_mm_slli_si128(_mm_castps_si128(a.v), 4));
@@ -166,7 +170,9 @@ inline Float4 prefixSum(Float4 a) {
     r.v[3] = s1 + (a.v[2] + a.v[3]);
     return r;
 }
-inline Float4 lastLane(Float4 a) { return Float4(a.v[3]); }
+inline Float4 lastLane(Float4 a) {
+    return Float4(a.v[3]);
+}
 inline Float4 shiftIn(Float4 a, float first) {
     Float4 r;
     r.v[0] = first, r.v[1] = a.v[0], r.v[2] = a.v[1], r.v[3] = a.v[2];
