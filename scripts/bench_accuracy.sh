@@ -18,6 +18,9 @@
 #   --baseline-build DIR
 #                     a previous build (DIR/bin/igi-master, e.g. /work/base/build): its first frame
 #                     and accumulation curve at the same settings, and the ratios new / old
+#   --docs DIR, --doc FILE
+#                     where the report goes (default docs/accuracy/) and the document whose
+#                     generated blocks are replaced (default docs/ACCURACY.md)
 #   --ref DIR         where the cached references are (default out/reference/): e.g. those of
 #                     another worktree, which saves their hours of path tracing
 #   --seconds S       render time the accumulation and Cycles curves span (default 60)

@@ -100,6 +100,9 @@ const std::vector<SkipRule>& skipRules() {
          "a libFuzzer run of 600 s per target (the test command runs the short ones)"},
         {"", std::regex(R"(^(IGI_BUILD=\S+ )?scripts/bench_[a-z_]+\.sh(\s|$))"),
          "a benchmark of several minutes that rewrites docs/ (PERFORMANCE.md, ACCURACY.md)"},
+        {"", std::regex(R"(^scripts/equal_time\.py(\s|$))"),
+         "a table over a benchmark's committed results.csv (docs/accuracy/*/): no renderer "
+         "runs, and what it prints is quoted in the document beside it"},
         {"", std::regex(R"(^scripts/cluster\.sh(\s|$))"),
          "needs ssh hosts; tests/Cluster_test.cpp runs it against real sshd servers on test "
          "hosts made of network namespaces"},
