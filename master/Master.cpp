@@ -425,6 +425,7 @@ void Master::finishReadyFrames() {
         const auto start = Clock::now();
         if (restart) compositor_->resetAccumulation();
         compositor_->composite(record->buffer);
+        compositedUpTo_.store(f + 1);
         const double seconds = secondsSince(start);
         boost::asio::post(io_, [this, f, seconds] { onComposited(f, seconds); });
     });
@@ -598,6 +599,17 @@ int Master::run() {
     scheduleTick();
     io_.run();
     pool_.waitIdle();  // a frame being composited or written, when the session was stopped
+    // A frame composited after the session ended is in the image written below: report it as
+    // shown, so that the image and the frame count agree.
+    for (std::uint32_t f = nextFrameToFinish_; f < compositedUpTo_.load(); ++f) {
+        FrameStats& fs = stats_.frame(f);
+        fs.shown = true;
+        fs.accumulated = std::uint32_t(compositor_->accumulatedFrames());
+        if (frames_.count(f)) fs.epoch = frames_.at(f)->epoch;
+        writeFrameImages(f);
+        nextFrameToFinish_ = f + 1;
+    }
+    pool_.waitIdle();  // the sequence image just submitted
     localClients_.stop(10.0);
     if (progress_) progress_->finish();
     if (exitCode_ != 0) return exitCode_;

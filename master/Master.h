@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -160,6 +161,9 @@ class Master {
     /// its page faults and clearing every frame (CodedFrame::reuse).
     std::vector<proto::CodedFrame> spareBuffers_;
     bool compositing_ = false;
+    /// Frames the pool has composited into the image (written by the pool's thread): one may
+    /// finish after the session ended, when its io handler no longer runs.
+    std::atomic<std::uint32_t> compositedUpTo_{0};
     ClientId nextClientId_ = 1;
     std::uint32_t nextFrameToOpen_ = 0;
     std::uint32_t nextFrameToFinish_ = 0;
