@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
@@ -22,6 +23,27 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 // for a point reached by a compensation ray (`residual`); 1 otherwise.
 float residualWeight(const ConnectionBound* residual, float sharpness) {
     return residual ? 1.0f - residual->kept(sharpness) : 1.0f;
+}
+
+// A connection's geometry: unit direction from the point to the VPL, distance and both cosines.
+struct Link {
+    glm::vec3 w;
+    float d, d2, cosX, cosY;
+};
+
+// The link from `origin` (shading normal n, face normal f) to v; none where v is behind the
+// point or faces away from it (an omni light sample faces every way).
+std::optional<Link> linkTo(const Vpl& v, glm::vec3 origin, glm::vec3 n, glm::vec3 f) {
+    const glm::vec3 toLight = v.position - origin;
+    const float d2 = glm::dot(toLight, toLight);
+    if (!(d2 > 0)) return std::nullopt;
+    const float d = std::sqrt(d2);
+    const glm::vec3 w = toLight / d;
+    const float cosX = glm::dot(n, w);
+    if (cosX <= 0 || glm::dot(f, w) <= 0) return std::nullopt;
+    const float cosY = v.omni ? 1.0f : -glm::dot(v.normal, w);
+    if (cosY <= 0) return std::nullopt;
+    return Link{w, d, d2, cosX, cosY};
 }
 
 float maxSharpnessOf(const std::vector<Material>& materials) {
@@ -109,15 +131,9 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
     // Direct light: not bounded (its singularity is the light's own size, and for a glossy
     // lobe the MIS weight takes the light samples out where BRDF sampling is better).
     auto addDirect = [&](const Vpl& v, std::uint32_t target) {
-        const glm::vec3 toLight = v.position - origin;
-        const float d2 = glm::dot(toLight, toLight);
-        if (!(d2 > 0)) return;
-        const float d = std::sqrt(d2);
-        const glm::vec3 w = toLight / d;
-        const float cosX = glm::dot(n, w);
-        if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) return;
-        const float cosY = v.omni ? 1.0f : -glm::dot(v.normal, w);
-        if (cosY <= 0) return;
+        const std::optional<Link> link = linkTo(v, origin, n, x.faceNormal);
+        if (!link) return;
+        const auto [w, d, d2, cosX, cosY] = *link;
         const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
         const float r = residual ? residualWeight(residual, b.sharpness(cosAlpha)) : 1.0f;
         if (!(r > 0)) return;
@@ -177,15 +193,10 @@ void EndPointShader::connectVpl(const ShadingPoint& x, const LightingSet& set, s
     auto connect = [&](glm::vec3 w, float d, glm::vec3 e, glm::vec3 g) {
         queue.add(target, w, d * (1.0f - kVplShadowShrink), e, g);
     };
-    const glm::vec3 toLight = v.position - origin;
-    const float d2 = glm::dot(toLight, toLight);
-    if (!(d2 > 0)) return;
-    const float d = std::sqrt(d2);
-    const glm::vec3 w = toLight / d;
-    const float cosX = glm::dot(n, w);
-    if (cosX <= 0 || glm::dot(x.faceNormal, w) <= 0) return;
-    const float cosY = -glm::dot(v.normal, w);
-    if (cosY <= 0) return;
+    // Indirect VPLs are never omni: linkTo takes the cosine at the VPL.
+    const std::optional<Link> link = linkTo(v, origin, n, x.faceNormal);
+    if (!link) return;
+    const auto [w, d, d2, cosX, cosY] = *link;
     if (!glossy && residual == nullptr && set.boundShape == BoundShape::Clamp && !v.glossy()) {
         // Lambertian at both ends (sharpness 1, within any budget): the paper's clamp,
         // G <= cos cos / dmin^2. The common case, kept apart for speed.

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -41,6 +42,14 @@ void fillPacket(Packet& rays, int* valid, int count, const glm::vec3* origins,
         rays.id[i] = unsigned(i);
     }
 }
+
+// An Embree closest-hit packet of width N with its lane mask.
+template <int N>
+struct HitPacket {
+    static constexpr int kWidth = N;
+    alignas(64) int valid[N];
+    alignas(64) std::conditional_t<N == 8, RTCRayHit8, RTCRayHit16> packet;
+};
 
 // Whether every ray leaves from origins[0] with the direction signs of directions[0].
 bool sameOriginAndOctant(const glm::vec3* origins, const glm::vec3* directions, int count) {
@@ -207,33 +216,17 @@ bool TraceableScene::occludedIn(RTCScene scene, glm::vec3 origin, glm::vec3 dire
 
 void TraceableScene::occludedPacket(const ShadowRay* rays, int count, bool* blocked,
                                     RayCounters& counters) const {
-    counters.rays += std::uint64_t(count);
-    counters.shadowRays += std::uint64_t(count);
-    RTCIntersectContext context;
-    // Not RTC_INTERSECT_CONTEXT_FLAG_COHERENT: the client's shadow rays of one packet share an
-    // origin or an end, but their directions spread, and with that flag they ran at half the
-    // speed of single rays (igi-bench, 1 thread, default scene: 3.0 against 5.7 Mrays/s).
-    rtcInitIntersectContext(&context);
-    // Zeroed: only `count` entries are read, which the compiler cannot see.
-    glm::vec3 origins[kMaxPacket]{}, directions[kMaxPacket]{};
-    float tfar[kMaxPacket]{};
-    for (int i = 0; i < count; ++i) {
-        origins[i] = rays[i].origin;
-        directions[i] = rays[i].direction;
-        tfar[i] = rays[i].tfar;
-    }
+    auto trace = [&](auto& packet) {
+        for (int i = 0; i < count; ++i)
+            packet.set(i, rays[i].origin, rays[i].direction, rays[i].tfar);
+        occluded(packet, count, blocked, counters);
+    };
     if (count <= 8 && packetWidth_ == 8) {
-        alignas(32) int valid[8];
-        alignas(32) RTCRay8 packet;
-        fillPacket<8>(packet, valid, count, origins, directions, tfar);
-        rtcOccluded8(valid, top_, &context, &packet);
-        for (int i = 0; i < count; ++i) blocked[i] = packet.tfar[i] < 0.0f;  // -inf on a hit
+        ShadowPacket<8> packet;
+        trace(packet);
     } else {
-        alignas(64) int valid[16];
-        alignas(64) RTCRay16 packet;
-        fillPacket<16>(packet, valid, count, origins, directions, tfar);
-        rtcOccluded16(valid, top_, &context, &packet);
-        for (int i = 0; i < count; ++i) blocked[i] = packet.tfar[i] < 0.0f;
+        ShadowPacket<16> packet;
+        trace(packet);
     }
 }
 
@@ -249,31 +242,29 @@ void TraceableScene::intersectPacket(const glm::vec3* origins, const glm::vec3* 
     // hits (TraceableScene_test), so other packets go the usual way.
     if (sameOriginAndOctant(origins, directions, count))
         context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    auto finish = [&](auto& packet) {
+    auto trace = [&](auto& p) {
+        constexpr int N = std::remove_reference_t<decltype(p)>::kWidth;
+        fillPacket<N>(p.packet.ray, p.valid, count, origins, directions, tfar);
+        for (int i = 0; i < N; ++i)
+            p.packet.hit.geomID[i] = p.packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+        if constexpr (N == 8)
+            rtcIntersect8(p.valid, top_, &context, &p.packet);
+        else
+            rtcIntersect16(p.valid, top_, &context, &p.packet);
+        const auto& hit = p.packet.hit;
         for (int i = 0; i < count; ++i) {
-            found[i] = packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+            found[i] = hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
             if (found[i])
-                fillSurfacePoint(packet.hit.geomID[i], packet.hit.instID[0][i],
-                                 packet.hit.primID[i], packet.hit.u[i], packet.hit.v[i],
-                                 packet.ray.tfar[i], hits[i]);
+                fillSurfacePoint(hit.geomID[i], hit.instID[0][i], hit.primID[i], hit.u[i], hit.v[i],
+                                 p.packet.ray.tfar[i], hits[i]);
         }
     };
     if (count <= 8 && packetWidth_ == 8) {
-        alignas(32) int valid[8];
-        alignas(32) RTCRayHit8 packet;
-        fillPacket<8>(packet.ray, valid, count, origins, directions, tfar);
-        for (int i = 0; i < 8; ++i)
-            packet.hit.geomID[i] = packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect8(valid, top_, &context, &packet);
-        finish(packet);
+        HitPacket<8> p;
+        trace(p);
     } else {
-        alignas(64) int valid[16];
-        alignas(64) RTCRayHit16 packet;
-        fillPacket<16>(packet.ray, valid, count, origins, directions, tfar);
-        for (int i = 0; i < 16; ++i)
-            packet.hit.geomID[i] = packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect16(valid, top_, &context, &packet);
-        finish(packet);
+        HitPacket<16> p;
+        trace(p);
     }
 }
 

@@ -33,16 +33,22 @@ IGI_LANES V luminance(V r, V g, V b) {
         return splat<V>(0.2126) * r + splat<V>(0.7152) * g + splat<V>(0.0722) * b;
 }
 
+/// The filtered (f) and unfiltered (u) means R, G, B of the doubles of a block from `at` on:
+/// their sums times `inv`.
+template <class D>
+IGI_LANES void loadMeans(const double* at, D inv, D* f, D* u) {
+    for (int c = 0; c < 3; ++c) {
+        f[c] = loadDoubles<D>(at + (kFilteredSum + c) * kBlock) * inv;
+        u[c] = loadDoubles<D>(at + (kUnfilteredSum + c) * kBlock) * inv;
+    }
+}
+
 /// Accumulator::ownVariance on the doubles of a block from `at` on, from the sums after the
 /// frame.
 template <class D>
 IGI_LANES D ownVariance(const double* at, D inv, D invDegrees) {
-    const D f[3] = {loadDoubles<D>(at + (kFilteredSum + 0) * kBlock) * inv,
-                    loadDoubles<D>(at + (kFilteredSum + 1) * kBlock) * inv,
-                    loadDoubles<D>(at + (kFilteredSum + 2) * kBlock) * inv};
-    const D u[3] = {loadDoubles<D>(at + (kUnfilteredSum + 0) * kBlock) * inv,
-                    loadDoubles<D>(at + (kUnfilteredSum + 1) * kBlock) * inv,
-                    loadDoubles<D>(at + (kUnfilteredSum + 2) * kBlock) * inv};
+    D f[3], u[3];
+    loadMeans(at, inv, f, u);
     const D d = luminance(f[0], f[1], f[2]) - luminance(u[0], u[1], u[2]);
     const D d2 = loadDoubles<D>(at + kDifference2 * kBlock);
     return stdMax(splat<D>(0.0), d2 * inv - d * d) * invDegrees;
@@ -239,12 +245,8 @@ IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y
             D halves[3][2];
             for (int h = 0; h < 2; ++h) {
                 const double* at = s + h * kHalf;
-                const D f[3] = {loadDoubles<D>(at + (kFilteredSum + 0) * kBlock) * inv,
-                                loadDoubles<D>(at + (kFilteredSum + 1) * kBlock) * inv,
-                                loadDoubles<D>(at + (kFilteredSum + 2) * kBlock) * inv};
-                const D u[3] = {loadDoubles<D>(at + (kUnfilteredSum + 0) * kBlock) * inv,
-                                loadDoubles<D>(at + (kUnfilteredSum + 1) * kBlock) * inv,
-                                loadDoubles<D>(at + (kUnfilteredSum + 2) * kBlock) * inv};
+                D f[3], u[3];
+                loadMeans(at, inv, f, u);
                 const D d = luminance(f[0], f[1], f[2]) - luminance(u[0], u[1], u[2]);
                 const D allowed = tolerance * loadDoubles<D>(pooled + b * kBlock + j + h * kHalf);
                 const D d2 = d * d;
