@@ -1,5 +1,6 @@
 #include "igi/CausticGrid.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 
@@ -9,22 +10,27 @@
 namespace igi {
 
 CausticGrid::CausticGrid(std::vector<CausticPhoton> photons, float radius)
-    : radius_(radius), invCell_(1.0f / (2.0f * radius)) {
-    // A table with about two buckets per photon keeps chains short.
-    const std::uint32_t size = std::bit_ceil(std::max<std::uint32_t>(2u * photons.size(), 8u));
+    : radius_(radius), invCell_(1.0f / (2.0f * radius)), photons_(std::move(photons)) {
+    // Each photon is entered under up to 8 cells; about a bucket per entry keeps the lists
+    // that distinct cells share short.
+    const std::uint32_t size =
+        std::bit_ceil(std::max<std::uint32_t>(8u * std::uint32_t(photons_.size()), 8u));
     mask_ = size - 1;
     bucketStart_.assign(size + 1, 0);
 
-    // Counting sort of the photons by bucket.
-    std::vector<std::uint32_t> bucket(photons.size());
-    for (std::size_t i = 0; i < photons.size(); ++i) {
-        bucket[i] = bucketOf(photons[i].position);
-        ++bucketStart_[bucket[i] + 1];
+    // Counting sort of the entries by bucket, each photon in photon order within a bucket.
+    std::vector<std::uint32_t> buckets(8 * photons_.size());
+    std::vector<std::uint8_t> counts(photons_.size());
+    for (std::size_t i = 0; i < photons_.size(); ++i) {
+        counts[i] = std::uint8_t(bucketsHolding(photons_[i].position, &buckets[8 * i]));
+        for (int j = 0; j < counts[i]; ++j) ++bucketStart_[buckets[8 * i + j] + 1];
     }
     for (std::uint32_t b = 0; b < size; ++b) bucketStart_[b + 1] += bucketStart_[b];
-    photons_.resize(photons.size());
+    entries_.resize(bucketStart_[size]);
     std::vector<std::uint32_t> next(bucketStart_.begin(), bucketStart_.end() - 1);
-    for (std::size_t i = 0; i < photons.size(); ++i) photons_[next[bucket[i]]++] = photons[i];
+    for (std::size_t i = 0; i < photons_.size(); ++i)
+        for (int j = 0; j < counts[i]; ++j)
+            entries_[next[buckets[8 * i + j]]++] = {photons_[i].position, std::uint32_t(i)};
     // Grown by the radius and a margin, so that the test in forEachNear never turns away a point
     // within the radius of a photon (such a point lies within the radius of the box).
     if (photons_.empty()) return;
@@ -46,11 +52,18 @@ std::uint32_t CausticGrid::hashCell(std::int64_t x, std::int64_t y, std::int64_t
            (static_cast<std::uint32_t>(z) * 83492791u);
 }
 
-std::uint32_t CausticGrid::bucketOf(glm::vec3 p) const {
+int CausticGrid::bucketsHolding(glm::vec3 p, std::uint32_t* buckets) const {
+    // A query at q reads the block of cells floor(q / cell - 0.5) + {0, 1}^3; the photon's cell
+    // c = floor(p / cell) is in that block for the 8 query cells c - {0, 1}^3.
     const glm::dvec3 scaled = glm::dvec3(p) * double(invCell_);
-    return hashCell(std::int64_t(std::floor(scaled.x)), std::int64_t(std::floor(scaled.y)),
-                    std::int64_t(std::floor(scaled.z))) &
-           mask_;
+    const std::int64_t cx = floorToInt(scaled.x), cy = floorToInt(scaled.y),
+                       cz = floorToInt(scaled.z);
+    int count = 0;
+    for (int i = 0; i < 8; ++i) {
+        const std::uint32_t b = hashCell(cx - (i & 1), cy - ((i >> 1) & 1), cz - (i >> 2)) & mask_;
+        if (std::find(buckets, buckets + count, b) == buckets + count) buckets[count++] = b;
+    }
+    return count;
 }
 
 }  // namespace igi
