@@ -2,7 +2,8 @@
 # The README's two commands on a machine that starts empty: builds a minimal Debian 12 root with
 # debootstrap, copies the committed tree into it (git archive HEAD) and runs, in a chroot and
 # exactly as the README writes them, scripts/run.sh and then scripts/test.sh. Prints each
-# command's exit code and duration, and the first error line of one that fails.
+# command's exit code and duration, and the first error line of one that fails, whose whole
+# output it keeps beside the work folder (/var/tmp/igi-fresh-<time>-<command>.log by default).
 #
 # Why: CI runs on a machine where everything ever installed is still there, so it cannot see a
 # missing install step. This check can. It takes 20-40 minutes on 2 cores, too slow for the test
@@ -195,6 +196,10 @@ run_step() {
     echo "   first error: ${first:-(none matched; last line: $(tail -n 1 "$log"))}"
     echo "   last lines of its output:"
     tail -n 15 "$log" | sed 's/^/   | /'
+    # The root goes on the way out: its whole output stays, for a failure that does not show
+    # again (a test that failed once in a fresh root passed in the next one).
+    local kept="$work_parent/igi-fresh-$(date +%Y%m%d-%H%M%S)-$(basename "$cmd" .sh).log"
+    cp "$log" "$kept" && echo "   its whole output: $kept"
   else
     echo "   last line: $(grep -v '^[[:space:]]*$' "$log" | tail -n 1)"
     # A passing ctest can still have skipped tests (no root, a missing tool): show its summary
