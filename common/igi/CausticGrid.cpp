@@ -29,8 +29,7 @@ CausticGrid::CausticGrid(std::vector<CausticPhoton> photons, float radius)
     entries_.resize(bucketStart_[size]);
     std::vector<std::uint32_t> next(bucketStart_.begin(), bucketStart_.end() - 1);
     for (std::size_t i = 0; i < photons_.size(); ++i)
-        for (int j = 0; j < counts[i]; ++j)
-            entries_[next[buckets[8 * i + j]]++] = {photons_[i].position, std::uint32_t(i)};
+        for (int j = 0; j < counts[i]; ++j) entries_[next[buckets[8 * i + j]]++] = std::uint32_t(i);
     // Grown by the radius and a margin, so that the test in forEachNear never turns away a point
     // within the radius of a photon (such a point lies within the radius of the box).
     if (photons_.empty()) return;

@@ -22,7 +22,8 @@ namespace igi {
 /// frame in the default scene. Only occupied cells cost memory: cell coordinates are hashed
 /// (unsigned arithmetic, so overflow is defined) into a table of buckets. Distinct cells may
 /// share a bucket, so every candidate's distance is checked, and a photon entered under two cells
-/// of one bucket is entered once.
+/// of one bucket is entered once. A bucket lists photon indices: the table and the lists take
+/// up to 64 bytes per photon beside its own 48.
 class CausticGrid {
   public:
     CausticGrid() = default;
@@ -36,12 +37,6 @@ class CausticGrid {
     void forEachNear(glm::vec3 p, F&& f) const;
 
   private:
-    /// A photon as a bucket lists it: its position, for the distance test without reading the
-    /// photon, and its index in photons_.
-    struct Entry {
-        glm::vec3 position;
-        std::uint32_t photon;
-    };
     static std::uint32_t hashCell(std::int64_t x, std::int64_t y, std::int64_t z);
     /// std::floor, without a call into libm (the portable build has no SSE4.1 rounding
     /// instruction); exact for |x| < 2^62.
@@ -49,8 +44,8 @@ class CausticGrid {
         const auto i = std::int64_t(x);
         return double(i) > x ? i - 1 : i;
     }
-    /// The 8 distinct-or-repeated buckets of the cells whose block holds the photon at p;
-    /// returns how many distinct ones it wrote.
+    /// Writes the distinct buckets (at most 8) of the query cells whose block holds the photon
+    /// at p; returns how many it wrote.
     int bucketsHolding(glm::vec3 p, std::uint32_t* buckets) const;
 
     float radius_ = 0;
@@ -58,7 +53,7 @@ class CausticGrid {
     glm::vec3 lo_{0.0f}, hi_{0.0f};  ///< the photons' bounds, grown by the radius
     std::uint32_t mask_ = 0;
     std::vector<CausticPhoton> photons_;      ///< as given
-    std::vector<Entry> entries_;              ///< sorted by bucket
+    std::vector<std::uint32_t> entries_;      ///< photon indices, sorted by bucket
     std::vector<std::uint32_t> bucketStart_;  ///< mask_ + 2 entries
 };
 
@@ -74,9 +69,9 @@ void CausticGrid::forEachNear(glm::vec3 p, F&& f) const {
         hashCell(floorToInt(scaled.x), floorToInt(scaled.y), floorToInt(scaled.z)) & mask_;
     const std::uint32_t end = bucketStart_[bucket + 1];
     for (std::uint32_t k = bucketStart_[bucket]; k < end; ++k) {
-        const Entry& e = entries_[k];
-        const glm::vec3 d = e.position - p;
-        if (d.x * d.x + d.y * d.y + d.z * d.z <= r2) f(photons_[e.photon]);
+        const CausticPhoton& ph = photons_[entries_[k]];
+        const glm::vec3 d = ph.position - p;
+        if (d.x * d.x + d.y * d.y + d.z * d.z <= r2) f(ph);
     }
 }
 
