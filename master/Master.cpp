@@ -431,15 +431,20 @@ void Master::finishReadyFrames() {
     });
 }
 
+void Master::noteShown(std::uint32_t f) {
+    FrameStats& fs = stats_.frame(f);
+    fs.epoch = frames_.at(f)->epoch;
+    fs.accumulated = std::uint32_t(compositor_->accumulatedFrames());
+    fs.shown = true;
+}
+
 void Master::onComposited(std::uint32_t f, double seconds) {
     compositing_ = false;
     FrameStats& fs = stats_.frame(f);
     fs.compositeSeconds = seconds;
     fs.decodeSeconds = frames_.at(f)->decodeSeconds;
     fs.seconds = secondsSince(frames_.at(f)->opened);
-    fs.epoch = frames_.at(f)->epoch;
-    fs.accumulated = std::uint32_t(compositor_->accumulatedFrames());
-    fs.shown = true;
+    noteShown(f);
     stats_.noteFrameDone(secondsSince(created_));
     // On a terminal the progress line says it; the frame lines are for logs and the curious.
     spdlog::log(progress_ ? spdlog::level::debug : spdlog::level::info, "{}",
@@ -602,10 +607,7 @@ int Master::run() {
     // A frame composited after the session ended is in the image written below: report it as
     // shown, so that the image and the frame count agree.
     for (std::uint32_t f = nextFrameToFinish_; f < compositedUpTo_.load(); ++f) {
-        FrameStats& fs = stats_.frame(f);
-        fs.shown = true;
-        fs.accumulated = std::uint32_t(compositor_->accumulatedFrames());
-        if (frames_.count(f)) fs.epoch = frames_.at(f)->epoch;
+        noteShown(f);
         writeFrameImages(f);
         nextFrameToFinish_ = f + 1;
     }

@@ -89,6 +89,8 @@ class Master {
                        const std::string& error, const proto::TileStats& tileStats,
                        std::uint64_t wireBytes, double seconds);
     void onComposited(std::uint32_t frame, double seconds);
+    /// Frame `frame` (still in frames_) is in the compositor's image: its stats say so.
+    void noteShown(std::uint32_t frame);
     void onControl(const std::string& line, ControlServer::Reply reply);
     void writeFrameImages(std::uint32_t frame);
     void startView();
