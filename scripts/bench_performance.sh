@@ -241,6 +241,9 @@ for n in "${scale_counts[@]}"; do
   master=$!
   pids+=("$master")
   port=""
+  # The master's shell opens the log after this one may first read it; a sed that cannot open
+  # its file exits 2, which set -e and pipefail would make this script's silent exit.
+  touch "$mlog"
   for _ in $(seq 1 200); do
     port="$(sed -n 's/.*listening on 127\.0\.0\.1:\([0-9][0-9]*\).*/\1/p' "$mlog" | head -n1)"
     [ -n "$port" ] && break

@@ -36,6 +36,9 @@ die() {
   echo "cluster.sh: $*" >&2
   exit 2
 }
+# A command that fails unchecked ends the script (set -e); this names it rather than leaving
+# only the exit code.
+trap 'echo "cluster.sh: line $LINENO: \`$BASH_COMMAND\` failed (exit $?)" >&2' ERR
 say() { echo "[cluster] $*" | tee -a "$logs/cluster.log"; }
 
 hosts_file="" master_address="" port=7878 secret="" ssh_config=""
@@ -199,12 +202,16 @@ for ((i = 0; i < n; i++)); do
 done
 
 # ---- 3. the master, then the clients
+# The log exists before tee (started in its own process) opens it: the loop below reads it at
+# once, and a sed that cannot open its file exits 2, which set -e and pipefail would make this
+# script's silent exit.
+: >"$logs/master.log"
 "$local_bin/igi-master" --listen "$master_address:$port" --clients "$n" --secret-file "$secret" \
   "${control_arg[@]}" "${master_args[@]}" > >(tee "$logs/master.log") 2>&1 &
 master_pid=$!
 control=""
 for _ in $(seq 300); do
-  control="$(sed -n 's/.*control commands on \([0-9.]*:[0-9]*\).*/\1/p' "$logs/master.log" 2>/dev/null | head -n 1)"
+  control="$(sed -n 's/.*control commands on \([0-9.]*:[0-9]*\).*/\1/p' "$logs/master.log" | head -n 1)"
   [ -n "$control" ] && break
   kill -0 "$master_pid" 2>/dev/null || break
   sleep 0.1

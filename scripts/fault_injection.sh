@@ -59,6 +59,7 @@ for ((round = 1; round <= rounds; ++round)); do
   master=$!
   pids+=("$master")
   port=""
+  touch "$dir/master.log"  # the master's shell may open it after the first read below
   for _ in $(seq 200); do
     port="$(sed -n 's/.*listening on 127\.0\.0\.1:\([0-9]*\).*/\1/p' "$dir/master.log")"
     [ -n "$port" ] && break

@@ -34,7 +34,7 @@ bool waitForCount(const std::filesystem::path& log, const std::regex& pattern, i
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
     while (std::chrono::steady_clock::now() < deadline) {
         if (countMatches(readFile(log), pattern) >= count) return true;
-        if (kill(pid, 0) != 0) return false;
+        if (!processRunning(pid)) return false;
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     return false;

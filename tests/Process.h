@@ -51,6 +51,16 @@ inline pid_t spawnProcess(const std::vector<std::string>& args, const std::files
     return pid;
 }
 
+/// Whether a process is still running. A child that has ended but is not yet waited for (a
+/// zombie) still answers kill(pid, 0); waitid with WNOWAIT sees that it ended and leaves it for
+/// waitProcess to collect its exit code.
+inline bool processRunning(pid_t pid) {
+    siginfo_t info{};
+    if (waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0)
+        return info.si_pid != pid;  // si_pid stays 0 while the child runs
+    return kill(pid, 0) == 0;       // not our child: all we can ask is whether the pid exists
+}
+
 /// Waits for a process; kills it after `timeoutSeconds`. Returns its exit code, -1 if killed.
 inline int waitProcess(pid_t pid, double timeoutSeconds) {
     const auto deadline =

@@ -58,7 +58,7 @@ inline std::smatch waitForLine(const std::filesystem::path& log, const std::rege
         text = readFile(log);
         std::smatch m;
         if (std::regex_search(text, m, pattern)) return m;
-        if (kill(pid, 0) != 0) break;
+        if (!processRunning(pid)) break;
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     return {};
