@@ -1,7 +1,6 @@
 #include "EndPointShader.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -10,8 +9,8 @@
 
 #include "ConnectionBound.h"
 #include "DeltaChain.h"
+#include "LambertianLinks.h"
 #include "math/Color.h"
-#include "math/Float4.h"
 #include "math/Warp.h"
 
 namespace igi {
@@ -221,46 +220,23 @@ void EndPointShader::connectVpl(const ShadingPoint& x, const LightingSet& set, s
 
 void EndPointShader::connectLambertian(const ShadingPoint& x, const LightingSet& set,
                                        glm::vec3 origin, ShadowQueue& queue) const {
-    // Every VPL of the set, four at a time: lane by lane the arithmetic of the scalar
-    // connection in queueConnections (glm's dot is (x x' + y y') + z z', -a is 0 - a where it
-    // passes), so that every value has the same bits; the tests stay scalar, as there. A
-    // connection is mostly rejected by its cosines, after a square root and a division whose
-    // latencies the four lanes share.
-    const VplChoice& l = set.vplChoice;
-    const glm::vec3 n = x.brdf.normal, f = x.faceNormal;
-    const Float4 ox(origin.x), oy(origin.y), oz(origin.z), m2(set.minDistance2), zero(0.0f);
-    const auto first = std::uint32_t(set.direct.size());
+    // Every VPL of the set, tested many at a time with the scalar connection's arithmetic
+    // (LambertianLinks), so that every value has the same bits as there.
     const std::size_t count = set.indirect.size();
-    for (std::size_t j = 0; j < count; j += 4) {
-        const Float4 tx = Float4::load(&l.px[j]) - ox, ty = Float4::load(&l.py[j]) - oy,
-                     tz = Float4::load(&l.pz[j]) - oz;
-        const Float4 d2 = tx * tx + ty * ty + tz * tz;
-        const Float4 d = sqrt(d2);
-        const Float4 wx = tx / d, wy = ty / d, wz = tz / d;
-        const Float4 cosX = Float4(n.x) * wx + Float4(n.y) * wy + Float4(n.z) * wz;
-        const Float4 face = Float4(f.x) * wx + Float4(f.y) * wy + Float4(f.z) * wz;
-        const Float4 cosY = zero - (Float4::load(&l.nx[j]) * wx + Float4::load(&l.ny[j]) * wy +
-                                    Float4::load(&l.nz[j]) * wz);
-        const Float4 g = cosX * cosY / max(d2, m2);
-        // The scalar tests, negated as there: a NaN cosine is not rejected, a NaN d2 is.
-        const Float4 reject = notGreater(d2, zero) | lessEqual(cosX, zero) | lessEqual(face, zero) |
-                              lessEqual(cosY, zero);
-        std::uint32_t lanes = ~laneBits(reject) & 0xFu;
-        if (l.anyGlossy) lanes |= l.glossyBits(j);  // these take the general connection
-        if (j + 4 > count) lanes &= (1u << (count - j)) - 1u;
-        if (lanes == 0) continue;
-        float v[6][4];
-        d.store(v[0]), wx.store(v[1]), wy.store(v[2]), wz.store(v[3]), g.store(v[4]);
-        for (; lanes != 0; lanes &= lanes - 1) {
-            const auto i = std::size_t(std::countr_zero(lanes));
-            const Vpl& vpl = set.indirect[j + i];
-            if (vpl.glossy()) {
-                connectVpl(x, set, j + i, 1.0f, origin, nullptr, queue);
-                continue;
-            }
-            queue.add(first + std::uint32_t(j + i), glm::vec3(v[1][i], v[2][i], v[3][i]),
-                      v[0][i] * (1.0f - kVplShadowShrink), vpl.power * v[4][i], glm::vec3(0.0f));
+    thread_local std::vector<LambertianLink> links;
+    if (links.size() < count) links.resize(count);
+    const std::size_t kept = lambertianLinks(set.vplChoice, count, origin, x.brdf.normal,
+                                             x.faceNormal, set.minDistance2, links.data());
+    const auto first = std::uint32_t(set.direct.size());
+    for (std::size_t k = 0; k < kept; ++k) {
+        const LambertianLink& link = links[k];
+        const Vpl& vpl = set.indirect[link.vpl];
+        if (vpl.glossy()) {  // the general connection, as the scalar path takes it
+            connectVpl(x, set, link.vpl, 1.0f, origin, nullptr, queue);
+            continue;
         }
+        queue.add(first + link.vpl, link.w, link.d * (1.0f - kVplShadowShrink), vpl.power * link.g,
+                  glm::vec3(0.0f));
     }
 }
 

@@ -11,9 +11,12 @@ namespace igi {
 void VplChoice::prepare(const std::vector<Vpl>& vpls, std::uint32_t points, float u) {
     perPoint = points;
     offset = u;
-    const std::size_t padded = (vpls.size() + 3) / 4 * 4;
-    for (auto* v : {&px, &py, &pz, &nx, &ny, &nz, &lum}) v->assign(padded, 0.0f);
-    glossy.assign(padded / 4, 0);
+    // The choice reads four lanes at a time, the Lambertian links (LambertianLinks) up to
+    // eight: positions, normals and glossy bits go on to a multiple of eight.
+    const std::size_t padded = (vpls.size() + 3) / 4 * 4, wide = (vpls.size() + 7) / 8 * 8;
+    for (auto* v : {&px, &py, &pz, &nx, &ny, &nz}) v->assign(wide, 0.0f);
+    lum.assign(padded, 0.0f);
+    glossy.assign(wide / 4, 0);
     anyGlossy = false;
     for (std::size_t i = 0; i < vpls.size(); ++i) {
         const Vpl& v = vpls[i];

@@ -29,8 +29,9 @@ namespace igi {
 struct VplChoice {
     std::uint32_t perPoint = 0;  ///< 0: every point connects to every VPL of the set
     float offset = 0.5f;         ///< in [0, 1)
-    /// The set's VPLs four-wide (padded with zero brightness): position, normal, brightness;
-    /// also what the connections of a Lambertian point read four at a time (EndPointShader).
+    /// The set's VPLs side by side, padded with zero brightness to a multiple of four (the
+    /// positions and normals to a multiple of eight): position, normal, brightness; also what
+    /// the connections of a Lambertian point read (LambertianLinks).
     std::vector<float> px, py, pz, nx, ny, nz, lum;
     bool anyGlossy = false;
     std::vector<std::uint8_t> glossy;  ///< per four VPLs: bit i where VPL 4k + i is glossy

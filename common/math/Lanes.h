@@ -176,6 +176,24 @@ IGI_LANES F8 narrow(D4 low, D4 high) {
     return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
 }
 
+/// The square root of each lane, correctly rounded (sqrtps), as std::sqrt gives it.
+IGI_LANES F4 squareRoot(F4 a) {
+    return __builtin_ia32_sqrtps(a);
+}
+/// Bit i set where lane i of a comparison holds.
+IGI_LANES unsigned laneBits(I4 mask) {
+    return unsigned(__builtin_ia32_movmskps((F4)mask));
+}
+#if IGI_HAS_AVX2_TARGET
+// AVX instructions: not inlined by force, as widenAvx, but inlined into the AVX2 kernels.
+IGI_AVX2 inline F8 squareRoot(F8 a) {
+    return __builtin_ia32_sqrtps256(a);
+}
+IGI_AVX2 inline unsigned laneBits(I8 mask) {
+    return unsigned(__builtin_ia32_movmskps256((F8)mask));
+}
+#endif
+
 /// The bytes at p, one per lane, zero-extended to 32 bits.
 IGI_LANES U4 loadBytes4(const std::uint8_t* p) {
 #if defined(__SSE2__)
