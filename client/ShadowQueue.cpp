@@ -6,6 +6,7 @@ namespace igi {
 
 void ShadowQueue::clear() {
     size_ = 0;
+    top_ = 0;
     origins_.clear();
     pointBegin_.clear();
 }
@@ -18,9 +19,7 @@ std::uint32_t ShadowQueue::beginPoint(glm::vec3 origin) {
 }
 
 void ShadowQueue::sortByTarget() {
-    std::uint32_t top = 0;  // one past the largest shared target
-    for (std::size_t i = 0; i < size_; ++i)
-        if (entries_[i].target != kOwnTarget) top = std::max(top, entries_[i].target + 1);
+    const std::uint32_t top = top_;
     // Counting sort: bucket `top` holds the own targets, in the order queued.
     counts_.assign(std::size_t(top) + 2, 0);
     auto bucket = [top](std::uint32_t t) { return t == kOwnTarget ? top : t; };

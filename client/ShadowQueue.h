@@ -37,6 +37,7 @@ class ShadowQueue {
              glm::vec3 glossy) {
         if (size_ == entries_.size()) entries_.resize(std::max<std::size_t>(64, 2 * size_));
         entries_[size_++] = {direction, tfar, irradiance, glossy, currentPoint_, target};
+        top_ = std::max(top_, target + 1u);  // kOwnTarget + 1 wraps to 0: not a shared target
     }
     /// Traces every queued ray, in packets of the scene's width grouped by target.
     void trace(const TraceableScene& scene, RayCounters& counters);
@@ -63,6 +64,7 @@ class ShadowQueue {
     std::vector<Entry> entries_;
     std::size_t size_ = 0;
     std::uint32_t currentPoint_ = 0;
+    std::uint32_t top_ = 0;                  ///< one past the largest shared target queued
     std::vector<glm::vec3> origins_;         ///< per point
     std::vector<std::uint32_t> pointBegin_;  ///< point p's entries start there
     std::vector<std::uint8_t> blocked_;
