@@ -2,6 +2,7 @@
 
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include <glm/vec3.hpp>
 
@@ -31,20 +32,21 @@ inline float nonDeltaProbability(const Lobes& l) {
     return total > 0 ? nonDelta / total : 0.0f;
 }
 
-/// Follows a path from `origin` along `direction` through mirrors and glass: at every vertex
-/// one lobe is chosen (one number from `next()`), and the path ends at the first vertex whose
-/// non-delta part is chosen. Emitters met on the way add throughput * Le to `emitted`.
-/// Nothing when the path leaves the scene, is absorbed, or has not ended after `maxHits`
-/// intersections.
+/// Follows a path through mirrors and glass from `firstHit`, where a ray along `direction` has
+/// already landed: at every vertex one lobe is chosen (one number from `next()`), and the path
+/// ends at the first vertex whose non-delta part is chosen. Emitters met on the way add
+/// throughput * Le to `emitted`. Nothing when the path leaves the scene, is absorbed, or has
+/// not ended after `maxHits` intersections (the first hit counts as one).
 template <typename Next>
-std::optional<ChainEnd> followDeltaChain(const TraceableScene& scene, glm::vec3 origin,
-                                         glm::vec3 direction, glm::vec3 throughput,
-                                         float pathLength, int maxHits, Next&& next,
-                                         glm::vec3& emitted, RayCounters& counters) {
+std::optional<ChainEnd> followDeltaChainFrom(const TraceableScene& scene,
+                                             const SurfacePoint& firstHit, glm::vec3 direction,
+                                             glm::vec3 throughput, float pathLength, int maxHits,
+                                             Next&& next, glm::vec3& emitted,
+                                             RayCounters& counters) {
     constexpr float kInfinity = std::numeric_limits<float>::infinity();
     ChainEnd end;
-    for (int hits = 1; hits <= maxHits; ++hits) {
-        if (!scene.intersect(origin, direction, kInfinity, end.hit, counters)) return std::nullopt;
+    end.hit = firstHit;
+    for (int hits = 1;; ++hits) {
         pathLength += end.hit.distance;
         const glm::vec3 wo = -direction;
         emitted += throughput * emittedToward(end.hit, wo);
@@ -57,15 +59,31 @@ std::optional<ChainEnd> followDeltaChain(const TraceableScene& scene, glm::vec3 
             end.pathLength = pathLength;
             return end;
         }
-        if (hits == maxHits) return std::nullopt;
+        if (hits >= maxHits) return std::nullopt;
         glm::vec3 weight;
         const float u0 = next(), u1 = next();
         if (!sampleLobe(end.lobes, lobe, {u0, u1}, direction, weight)) return std::nullopt;
         throughput *= weight / probability;
         if (isBlack(throughput)) return std::nullopt;
-        origin = scene.offsetOrigin(end.hit.position, end.lobes.faceNormal, direction);
+        const glm::vec3 origin =
+            scene.offsetOrigin(end.hit.position, end.lobes.faceNormal, direction);
+        if (!scene.intersect(origin, direction, kInfinity, end.hit, counters)) return std::nullopt;
     }
-    return std::nullopt;
+}
+
+/// followDeltaChainFrom where the ray from `origin` along `direction` lands (nothing if it
+/// leaves the scene, or if maxHits < 1).
+template <typename Next>
+std::optional<ChainEnd> followDeltaChain(const TraceableScene& scene, glm::vec3 origin,
+                                         glm::vec3 direction, glm::vec3 throughput,
+                                         float pathLength, int maxHits, Next&& next,
+                                         glm::vec3& emitted, RayCounters& counters) {
+    SurfacePoint first;
+    if (maxHits < 1 || !scene.intersect(origin, direction, std::numeric_limits<float>::infinity(),
+                                        first, counters))
+        return std::nullopt;
+    return followDeltaChainFrom(scene, first, direction, throughput, pathLength, maxHits,
+                                std::forward<Next>(next), emitted, counters);
 }
 
 }  // namespace igi

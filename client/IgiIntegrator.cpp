@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -41,6 +43,15 @@ struct IgiIntegrator::PixelPath {
     int primary = -1;  ///< the end point the master filters
 };
 
+/// A ray leaving a pixel's first hit along a mirror or glass lobe, and where it landed.
+struct IgiIntegrator::Continuation {
+    int pixel = 0;  ///< in the pixels being shaded
+    int end = 0;    ///< the PixelPath end it leads to: 1 mirror, 2 glass
+    glm::vec3 origin{0.0f}, direction{0.0f}, weight{0.0f};
+    SurfacePoint hit;
+    bool found = false;
+};
+
 PixelResult IgiIntegrator::shade(int x, int y, std::uint32_t pixelIndex, std::uint32_t frame,
                                  const LightingSet& set, RayCounters& counters) const {
     const Pixel pixel{x, y, pixelIndex};
@@ -69,11 +80,21 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
         results[i] = PixelResult{};
     }
     traceEyeRays(paths.data(), count, counters);
+    // The rays that leave the first hits along mirror and glass lobes go in packets too; the
+    // rest of each chain follows one ray at a time (its numbers come from the pixel's stream,
+    // in order).
+    thread_local std::vector<Continuation> continuations;
+    continuations.clear();
+    for (int i = 0; i < count; ++i)
+        if (paths[std::size_t(i)].found)
+            splitAtFirstHit(paths[std::size_t(i)], i, results[i], continuations);
+    traceContinuations(continuations, counters);
     queue.clear();
+    std::size_t next = 0;  // continuations are in pixel order
     for (int i = 0; i < count; ++i) {
         PixelPath& p = paths[std::size_t(i)];
         if (!p.found) continue;
-        splitAtFirstHit(p, results[i], counters);
+        followChains(p, i, continuations, next, results[i], counters);
         for (int e = 0; e < 3; ++e)
             if (p.ends[e])
                 p.pending[e] =
@@ -86,6 +107,34 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
 }
 
 void IgiIntegrator::traceEyeRays(PixelPath* paths, int count, RayCounters& counters) const {
+    traceInPackets(
+        count,
+        [&](int k) {
+            return std::pair{camera_.origin(), paths[k].direction};
+        },
+        [&](int k, bool found, const SurfacePoint& hit) {
+            paths[k].found = found;
+            if (found) paths[k].hit = hit;
+        },
+        counters);
+}
+
+void IgiIntegrator::traceContinuations(std::vector<Continuation>& rays,
+                                       RayCounters& counters) const {
+    traceInPackets(
+        int(rays.size()),
+        [&](int k) {
+            return std::pair{rays[k].origin, rays[k].direction};
+        },
+        [&](int k, bool found, const SurfacePoint& hit) {
+            rays[k].found = found;
+            if (found) rays[k].hit = hit;
+        },
+        counters);
+}
+
+template <class Ray, class Land>
+void IgiIntegrator::traceInPackets(int count, Ray&& ray, Land&& land, RayCounters& counters) const {
     const int width = scene_.packetWidth();
     glm::vec3 origins[TraceableScene::kMaxPacket], directions[TraceableScene::kMaxPacket];
     float tfar[TraceableScene::kMaxPacket];
@@ -93,44 +142,55 @@ void IgiIntegrator::traceEyeRays(PixelPath* paths, int count, RayCounters& count
     bool found[TraceableScene::kMaxPacket];
     for (int begin = 0; begin < count; begin += width) {
         const int n = std::min(width, count - begin);
-        if (n == 1) {
-            PixelPath& p = paths[begin];
-            p.found = scene_.intersect(camera_.origin(), p.direction, kInfinity, p.hit, counters);
-            continue;
-        }
         for (int k = 0; k < n; ++k) {
-            origins[k] = camera_.origin();
-            directions[k] = paths[begin + k].direction;
+            std::tie(origins[k], directions[k]) = ray(begin + k);
             tfar[k] = kInfinity;
         }
-        scene_.intersectPacket(origins, directions, tfar, n, hits, found, counters);
-        for (int k = 0; k < n; ++k) {
-            paths[begin + k].found = found[k];
-            if (found[k]) paths[begin + k].hit = hits[k];
-        }
+        if (n == 1)  // a packet of one ray costs more than the ray alone
+            found[0] = scene_.intersect(origins[0], directions[0], kInfinity, hits[0], counters);
+        else
+            scene_.intersectPacket(origins, directions, tfar, n, hits, found, counters);
+        for (int k = 0; k < n; ++k) land(begin + k, found[k], hits[k]);
     }
 }
 
-void IgiIntegrator::splitAtFirstHit(PixelPath& p, PixelResult& result,
-                                    RayCounters& counters) const {
-    PathRandom random(p.sampler, p.nextNumber);
+void IgiIntegrator::splitAtFirstHit(PixelPath& p, int pixel, PixelResult& result,
+                                    std::vector<Continuation>& continuations) const {
     const SurfacePoint& hit = p.hit;
     const glm::vec3 wo = -p.direction;
     result.unfiltered += emittedToward(hit, wo);
     const Lobes lobes = lobesAt(hit, wo);
 
-    // Split once: the non-delta part here, and one path per delta component.
+    // Split once: the non-delta part here, and one path per delta component, whose first ray
+    // (a delta lobe's direction takes no random numbers) is traced with the other pixels'.
     if (lobes.hasNonDelta()) p.ends[0] = ChainEnd{hit, lobes, glm::vec3(1.0f), hit.distance};
+    if (settings_.maxEyeDepth < 1) return;
     const Lobe deltas[2] = {Lobe::Reflection, Lobe::Transmission};
     for (int i = 0; i < 2; ++i) {
         glm::vec3 next, weight;
         if (lobeWeight(lobes, deltas[i]) <= 0 ||
             !sampleLobe(lobes, deltas[i], {0.5f, 0.5f}, next, weight))
             continue;
-        p.ends[i + 1] = followDeltaChain(
-            scene_, scene_.offsetOrigin(hit.position, lobes.faceNormal, next), next, weight,
-            hit.distance, settings_.maxEyeDepth, [&] { return random.next(); }, result.unfiltered,
-            counters);
+        Continuation c;
+        c.pixel = pixel;
+        c.end = i + 1;
+        c.origin = scene_.offsetOrigin(hit.position, lobes.faceNormal, next);
+        c.direction = next;
+        c.weight = weight;
+        continuations.push_back(c);
+    }
+}
+
+void IgiIntegrator::followChains(PixelPath& p, int pixel,
+                                 const std::vector<Continuation>& continuations, std::size_t& next,
+                                 PixelResult& result, RayCounters& counters) const {
+    PathRandom random(p.sampler, p.nextNumber);
+    for (; next < continuations.size() && continuations[next].pixel == pixel; ++next) {
+        const Continuation& c = continuations[next];
+        if (!c.found) continue;
+        p.ends[c.end] = followDeltaChainFrom(
+            scene_, c.hit, c.direction, c.weight, p.hit.distance, settings_.maxEyeDepth,
+            [&] { return random.next(); }, result.unfiltered, counters);
     }
     p.nextNumber = random.position();
 

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "DeltaChain.h"
 #include "EndPointShader.h"
@@ -47,8 +48,21 @@ class IgiIntegrator {
 
   private:
     struct PixelPath;
+    struct Continuation;
     void traceEyeRays(PixelPath* paths, int count, RayCounters& counters) const;
-    void splitAtFirstHit(PixelPath& path, PixelResult& result, RayCounters& counters) const;
+    void traceContinuations(std::vector<Continuation>& rays, RayCounters& counters) const;
+    /// Rays ray(0 .. count - 1) (origin, direction), traced in packets of the scene's width;
+    /// land(k, found, hit) takes each one's result.
+    template <class Ray, class Land>
+    void traceInPackets(int count, Ray&& ray, Land&& land, RayCounters& counters) const;
+    /// The first hit's emission, its non-delta end point, and the rays that leave it along its
+    /// mirror and glass lobes (appended to `continuations`).
+    void splitAtFirstHit(PixelPath& path, int pixel, PixelResult& result,
+                         std::vector<Continuation>& continuations) const;
+    /// The pixel's mirror and glass paths from where their first rays landed (continuations
+    /// from `next` on, advanced past the pixel's), then the end point the master filters.
+    void followChains(PixelPath& path, int pixel, const std::vector<Continuation>& continuations,
+                      std::size_t& next, PixelResult& result, RayCounters& counters) const;
     void shadeEnds(PixelPath& path, const LightingSet& set, const ShadowQueue& queue,
                    PixelResult& result, RayCounters& counters) const;
 

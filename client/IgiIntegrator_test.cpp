@@ -109,6 +109,10 @@ TEST(IgiIntegrator, APixelShadedWithOthersIsThePixelShadedAlone) {
         scene.materials[0].specular = glm::vec3(0.3f);  // a glossy floor and back wall: MIS and
         scene.materials[0].phongExponent = 30.0f;       // continuations, besides the glass
         scene.materials[0].reflection = Reflection::Glossy;
+        // A half-mirror red wall: one delta lobe, so a pixel shaded alone traces its mirror ray
+        // alone, and together in a packet with its neighbours'.
+        scene.materials[1].specular = glm::vec3(0.5f);
+        scene.materials[1].reflection = Reflection::Mirror;
         scene.image = {48, 36, 0};
         InProcessRenderer renderer(scene);
         TileRenderer& tiles = renderer.renderer();
