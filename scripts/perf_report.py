@@ -487,7 +487,8 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
           f"the CPU has AVX-512 and Embree native 16-wide packets, else 8): each chunk of 8 x 8 "
           f"pixels queues the shadow rays of all its points (light samples and VPLs), sorts them "
           f"by target and traces them in packets, then sums each point's in the order queued, so "
-          f"the images do not depend on the packet width; eye rays go in packets too. The "
+          f"the images do not depend on the packet width; eye rays go in packets too, as do "
+          f"the rays that leave the first hits along mirror and glass. The "
           f"client's figure includes its shading, sampling, VPL and photon building and tile "
           f"filling, which the raw figure does not. The rows with {meta.get('nproc', 2)} "
           f"threads compete with everyone else on the 2 cores and scatter more.")
