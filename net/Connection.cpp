@@ -216,38 +216,26 @@ void Connection::enqueue(std::vector<std::uint8_t> bytes) {
         return;
     }
     writeQueue_.push_back(std::move(bytes));
-    if (inFlight_ == 0) writeNext();
+    if (!writing_) writeNext();
 }
 
 void Connection::writeNext() {
-    // Every message queued so far goes in one write (up to kMaxGather): the master sends its
-    // tile assignments several at a time, and a system call for each cost it more than the
-    // compositing of their tiles with fast clients on loopback (where the kernel delivers to
-    // the receiver within the sender's call).
-    constexpr std::size_t kMaxGather = 64;
-    inFlight_ = std::min(writeQueue_.size(), kMaxGather);
-    std::vector<boost::asio::const_buffer> buffers;
-    buffers.reserve(inFlight_);
-    for (std::size_t i = 0; i < inFlight_; ++i)
-        buffers.push_back(boost::asio::buffer(writeQueue_[i]));
+    writing_ = true;
     boost::asio::async_write(
-        socket_, buffers,
+        socket_, boost::asio::buffer(writeQueue_.front()),
         boost::asio::bind_executor(
             strand_, [self = shared_from_this()](const boost::system::error_code& ec,
                                                  std::size_t n) { self->onWrite(ec, n); }));
 }
 
 void Connection::onWrite(const boost::system::error_code& ec, std::size_t n) {
-    const std::size_t written = inFlight_;
-    inFlight_ = 0;
+    writing_ = false;
     bytesSent_ += n;
     if (closed_) return;
     if (ec) return closeNow("socket error while writing: " + ec.message(), CloseKind::Problem);
-    messagesSent_ += written;
-    for (std::size_t i = 0; i < written; ++i) {
-        queuedBytes_ -= writeQueue_.front().size();
-        writeQueue_.pop_front();
-    }
+    ++messagesSent_;
+    queuedBytes_ -= writeQueue_.front().size();
+    writeQueue_.pop_front();
     if (!writeQueue_.empty()) return writeNext();
     if (closeWhenDrained_) closeNow(drainReason_, CloseKind::Owner);
 }
@@ -283,11 +271,11 @@ void Connection::closeNow(const std::string& reason, CloseKind kind) {
     socket_.close(ignored);
     // The buffer of a write still in flight (and the payload being read into) must outlive the
     // cancelled operation: they are freed with the connection, not here.
-    while (writeQueue_.size() > inFlight_) {
+    while (writeQueue_.size() > (writing_ ? 1u : 0u)) {
         queuedBytes_ -= writeQueue_.back().size();
         writeQueue_.pop_back();
     }
-    for (const auto& bytes : writeQueue_) queuedBytes_ -= bytes.size();
+    if (writing_) queuedBytes_ -= writeQueue_.front().size();
     // Handlers often capture their owner, which holds this connection: drop them to break the
     // cycle, and call onClose last, from a local, in case it drops the owner's last reference.
     CloseHandler onClose = std::move(onClose_);

@@ -125,8 +125,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
     /// When the message being read must be complete; none between messages.
     std::optional<std::chrono::steady_clock::time_point> messageDeadline_;
     std::deque<std::vector<std::uint8_t>> writeQueue_;
-    /// How many messages at the front of writeQueue_ the write in flight carries (0: none).
-    std::size_t inFlight_ = 0;
+    bool writing_ = false;
     bool closeWhenDrained_ = false;
     std::string drainReason_;
 
