@@ -318,7 +318,12 @@ void Master::dispatch() {
     if (!started_ || ending_) return;
     for (auto& [id, s] : sessions_) {
         if (!s.ready || !s.connection->isOpen()) continue;
-        while (scheduler_->inFlight(id) < depthFor(s)) {
+        // A deep queue is refilled a quarter at a time rather than a tile per result: the
+        // assignments then go out together, in one write (net::Connection gathers what is
+        // queued), and one system call per tile was the master's largest cost with fast clients.
+        const int depth = depthFor(s);
+        if (scheduler_->inFlight(id) > depth - std::max(1, depth / 4)) continue;
+        while (scheduler_->inFlight(id) < depth) {
             openFramesAsNeeded();
             const auto a = scheduler_->next(id, kDuplicateAfterSeconds);
             if (!a) break;

@@ -125,7 +125,8 @@ class Connection : public std::enable_shared_from_this<Connection> {
     /// When the message being read must be complete; none between messages.
     std::optional<std::chrono::steady_clock::time_point> messageDeadline_;
     std::deque<std::vector<std::uint8_t>> writeQueue_;
-    bool writing_ = false;
+    /// How many messages at the front of writeQueue_ the write in flight carries (0: none).
+    std::size_t inFlight_ = 0;
     bool closeWhenDrained_ = false;
     std::string drainReason_;
 
