@@ -15,8 +15,6 @@
 namespace igi::proto {
 namespace {
 
-constexpr int kZstdLevel = 1;  // tiles are many and small: speed over the last few percent
-
 /// Per-thread buffers of the codec, reused from tile to tile (a tile's allocations cost about
 /// as much as its pixels). Whatever grew past `kKeepBytes` (a huge tile) is given back.
 struct Scratch {
@@ -228,7 +226,7 @@ void writeTileChannels(ByteWriter& out, const TileChannels& channels) {
         const std::size_t at = out.size();
         out.u32(0);
         std::vector<std::uint8_t>& buffer = out.buffer();
-        zstdCompressAppend(w.raw(), kZstdLevel, buffer);
+        zstdCompressAppend(w.raw(), kTileZstdLevel, buffer);
         const std::size_t length = buffer.size() - at - 4;
         for (int i = 0; i < 4; ++i) buffer[at + i] = static_cast<std::uint8_t>(length >> (8 * i));
     }

@@ -345,7 +345,8 @@ std::vector<std::uint8_t> encode(const TileChannels& c) {
     for (float r : references) w.f32(r);
     if (sent != 0) {
         std::vector<std::uint8_t> frame(ZSTD_compressBound(raw.size()));
-        frame.resize(ZSTD_compress(frame.data(), frame.size(), raw.data(), raw.size(), 1));
+        frame.resize(
+            ZSTD_compress(frame.data(), frame.size(), raw.data(), raw.size(), kTileZstdLevel));
         w.blob(frame);
     }
     return out;
