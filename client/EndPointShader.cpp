@@ -146,7 +146,26 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
         }
         connect(target, w, d, e, g);
     };
-    for (std::size_t i = 0; i < set.direct.size(); ++i) addDirect(set.direct[i], std::uint32_t(i));
+    if (!glossy && residual == nullptr && set.directLanes.laidOut(set.direct.size())) {
+        // A Lambertian point tests its light samples many at a time (LambertianLinks) with
+        // addDirect's arithmetic: r is 1 and the bound's distance 0, so g is cos cos / d^2 as
+        // there. Point lights (omni: a cosine of 1) are listed for addDirect itself.
+        thread_local std::vector<LambertianLink> links;
+        if (links.size() < set.direct.size()) links.resize(set.direct.size());
+        const std::size_t kept = lambertianLinks(set.directLanes, set.direct.size(), origin, n,
+                                                 x.faceNormal, 0.0f, links.data());
+        for (std::size_t k = 0; k < kept; ++k) {
+            const LambertianLink& link = links[k];
+            const Vpl& v = set.direct[link.vpl];
+            if (v.omni)
+                addDirect(v, link.vpl);
+            else
+                connect(link.vpl, link.w, link.d, v.power * link.g, glm::vec3(0.0f));
+        }
+    } else {
+        for (std::size_t i = 0; i < set.direct.size(); ++i)
+            addDirect(set.direct[i], std::uint32_t(i));
+    }
     // With a light tree the point turns the set's numbers into light samples of its own.
     LightTree::Memo memo;
     for (const glm::vec3& u : set.directNumbers) {

@@ -148,5 +148,40 @@ TEST(IgiIntegrator, APixelShadedWithOthersIsThePixelShadedAlone) {
     }
 }
 
+// A Lambertian point tests its set's light samples and VPLs many at a time (LambertianLinks)
+// where the set laid them out, one at a time where it did not (sets made elsewhere): both must
+// give every pixel the same bits, for the area light's samples and the point light's alike.
+TEST(IgiIntegrator, ConnectionsInLanesGiveTheBitsOfConnectionsOneAtATime) {
+    Scene scene = testing::cornellBox(1.0f);
+    ASSERT_FALSE(scene.pointLights.empty());
+    scene.image = {40, 30, 0};
+    InProcessRenderer renderer(scene);
+    TileRenderer& tiles = renderer.renderer();
+    bool built = false;
+    const auto set = tiles.cache().get(2, 0, 1, built);
+    ASSERT_TRUE(set->directLanes.laidOut(set->direct.size()));
+    ASSERT_TRUE(set->vplChoice.laidOut(set->indirect.size()));
+    LightingSet alone = *set;
+    alone.directLanes = VplChoice{};
+    alone.vplChoice = VplChoice{};
+    ASSERT_FALSE(alone.directLanes.laidOut(alone.direct.size()));
+    const IgiIntegrator igi(renderer.traceable(), tiles.lights(), scene.render, tiles.camera());
+    RayCounters a, b;
+    int lit = 0;
+    for (int y = 0; y < scene.image.height; ++y)
+        for (int x = 0; x < scene.image.width; ++x) {
+            const auto index = std::uint32_t(y * scene.image.width + x);
+            const PixelResult lanes = igi.shade(x, y, index, 2, *set, a);
+            const PixelResult scalar = igi.shade(x, y, index, 2, alone, b);
+            ASSERT_TRUE(sameBits(lanes.irradiance, scalar.irradiance) &&
+                        sameBits(lanes.glossy, scalar.glossy) &&
+                        sameBits(lanes.unfiltered, scalar.unfiltered))
+                << "pixel " << x << ", " << y;
+            lit += luminance(lanes.irradiance) > 0;
+        }
+    EXPECT_GT(lit, scene.image.width * scene.image.height / 2);
+    EXPECT_EQ(a.shadowRays, b.shadowRays);
+}
+
 }  // namespace
 }  // namespace igi

@@ -36,9 +36,9 @@ IGI_LANES std::size_t linksBody(const VplChoice& l, std::size_t count, glm::vec3
         // The scalar tests, negated as there: a NaN cosine is not rejected, a NaN d2 is.
         const auto kept = (d2 > zero) & ~(cosX <= zero) & ~(face <= zero) & ~(cosY <= zero);
         std::uint32_t bits = lanes::laneBits(kept);
-        if (l.anyGlossy) {
-            bits |= l.glossyBits(j);
-            if constexpr (kWidth == 8) bits |= l.glossyBits(j + 4) << 4;
+        if (l.anyGeneral) {
+            bits |= l.generalBits(j);
+            if constexpr (kWidth == 8) bits |= l.generalBits(j + 4) << 4;
         }
         if (j + kWidth > count) bits &= (1u << (count - j)) - 1u;
         for (; bits != 0; bits &= bits - 1) {

@@ -27,8 +27,8 @@ struct LambertianLink {
 
 /// The links from `origin` (shading normal n, geometric normal f) to VPLs 0 .. count - 1 of
 /// `vpls` that the scalar tests keep: d^2 > 0 and both cosines and f.w above zero. A glossy
-/// VPL (a bit of vpls.glossyBits) is listed whatever its tests give, for the caller to take
-/// the general connection. Writes them to `out` (room for `count`) in VPL order; returns how
+/// VPL or an omni light sample (a bit of vpls.generalBits) is listed whatever its tests give,
+/// for the caller to take the general connection. Writes them to `out` (room for `count`) in VPL order; returns how
 /// many. `isa` chooses the instruction set (lanes::bestIsa() unless a test says otherwise).
 std::size_t lambertianLinks(const VplChoice& vpls, std::size_t count, glm::vec3 origin, glm::vec3 n,
                             glm::vec3 f, float dmin2, LambertianLink* out,

@@ -33,20 +33,26 @@ bool scalarLink(const Vpl& v, glm::vec3 origin, glm::vec3 n, glm::vec3 f, float 
     return true;
 }
 
+// The VPLs the caller connects itself: glossy ones, and light samples of point lights (whose
+// cosine is 1, which the lanes do not compute).
+bool general(const Vpl& v) {
+    return v.glossy() || v.omni;
+}
+
 glm::vec3 randomUnit(std::mt19937& random) {
     std::normal_distribution<float> g;
     return glm::normalize(glm::vec3(g(random), g(random), g(random)));
 }
 
-// Every count of VPLs (the lanes' remainders), glossy VPLs among them, points at a VPL's own
-// position (d = 0) and far from all: both instruction sets keep the scalar tests' VPLs and give
-// their values with the same bits.
+// Every count of VPLs (the lanes' remainders), glossy VPLs and omni light samples among them,
+// points at a VPL's own position (d = 0) and far from all: both instruction sets keep the scalar
+// tests' VPLs and give their values with the same bits.
 TEST(LambertianLinks, EveryInstructionSetGivesTheScalarConnectionsBitForBit) {
     std::mt19937 random(17);
     std::uniform_real_distribution<float> u(-3.0f, 3.0f);
     std::vector<lanes::Isa> isas = {lanes::Isa::kBaseline};
     if (lanes::hasAvx2()) isas.push_back(lanes::Isa::kAvx2);
-    int kept = 0, glossyListed = 0, checked = 0;
+    int kept = 0, generalListed = 0, checked = 0;
     for (int count = 1; count <= 37; ++count) {
         std::vector<Vpl> vpls(static_cast<std::size_t>(count));
         for (std::size_t i = 0; i < vpls.size(); ++i) {
@@ -54,6 +60,7 @@ TEST(LambertianLinks, EveryInstructionSetGivesTheScalarConnectionsBitForBit) {
             vpls[i].normal = randomUnit(random);
             vpls[i].power = glm::vec3(1.0f);
             if (i % 5 == 3) vpls[i].glossyShare = 0.5f;
+            if (i % 7 == 5) vpls[i].omni = true;
         }
         VplChoice choice;
         choice.prepare(vpls, 0, 0.5f);
@@ -67,11 +74,11 @@ TEST(LambertianLinks, EveryInstructionSetGivesTheScalarConnectionsBitForBit) {
             for (std::size_t i = 0; i < vpls.size(); ++i) {
                 LambertianLink l{};
                 const bool linked = scalarLink(vpls[i], origin, n, f, dmin2, l);
-                if (!linked && !vpls[i].glossy()) continue;
+                if (!linked && !general(vpls[i])) continue;
                 l.vpl = std::uint32_t(i);
                 expected.push_back(l);
                 kept += linked;
-                glossyListed += !linked;
+                generalListed += !linked;
             }
             for (const lanes::Isa isa : isas) {
                 std::vector<LambertianLink> got(vpls.size());
@@ -81,7 +88,7 @@ TEST(LambertianLinks, EveryInstructionSetGivesTheScalarConnectionsBitForBit) {
                 for (std::size_t k = 0; k < got.size(); ++k) {
                     const LambertianLink &a = got[k], &e = expected[k];
                     ASSERT_EQ(a.vpl, e.vpl);
-                    if (vpls[a.vpl].glossy()) continue;  // the caller recomputes those
+                    if (general(vpls[a.vpl])) continue;  // the caller recomputes those
                     ASSERT_TRUE(sameBits(a.d, e.d) && sameBits(a.w.x, e.w.x) &&
                                 sameBits(a.w.y, e.w.y) && sameBits(a.w.z, e.w.z) &&
                                 sameBits(a.g, e.g))
@@ -92,7 +99,8 @@ TEST(LambertianLinks, EveryInstructionSetGivesTheScalarConnectionsBitForBit) {
         }
     }
     EXPECT_GT(kept, 1000) << "the tests keep a fair share of the VPLs";
-    EXPECT_GT(glossyListed, 100) << "glossy VPLs are listed even where the tests reject them";
+    EXPECT_GT(generalListed, 100)
+        << "glossy VPLs and omni light samples are listed even where the tests reject them";
     EXPECT_GT(checked, 1000);
 }
 

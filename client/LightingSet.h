@@ -42,6 +42,9 @@ class ScreenCaustics;
 /// k builds exactly the same set, and no one waits for anyone.
 struct LightingSet {
     std::vector<Vpl> direct;  ///< samples on the lights (connections not bounded)
+    /// `direct` laid out side by side, for the connections of Lambertian points
+    /// (LambertianLinks); not laid out (sets made elsewhere), they connect one at a time.
+    VplChoice directLanes;
     /// With a light tree (Lights::choosesPerPoint) instead of `direct`: the numbers each point
     /// turns into its own light samples (choice, then a point on the chosen light).
     std::vector<glm::vec3> directNumbers;

@@ -131,6 +131,7 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
     const double radiusShrink = settings_.progressiveRadius ? shrink : 1.0;
     if (lights_.empty()) return set;
     sampleDirect(frame, setIndex, set);
+    set.directLanes.layOut(set.direct);
     if (lightPaths) walkLightPaths(frame, setIndex, set);
     // The VPLs laid out four-wide, for the connections (and with a pool, the choice among them).
     // Set k's offset in [k / K, (k + 1) / K): the frame's sets together stratify the choice over

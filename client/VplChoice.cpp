@@ -16,16 +16,16 @@ void VplChoice::prepare(const std::vector<Vpl>& vpls, std::uint32_t points, floa
     const std::size_t padded = (vpls.size() + 3) / 4 * 4, wide = (vpls.size() + 7) / 8 * 8;
     for (auto* v : {&px, &py, &pz, &nx, &ny, &nz}) v->assign(wide, 0.0f);
     lum.assign(padded, 0.0f);
-    glossy.assign(wide / 4, 0);
-    anyGlossy = false;
+    general.assign(wide / 4, 0);
+    anyGeneral = false;
     for (std::size_t i = 0; i < vpls.size(); ++i) {
         const Vpl& v = vpls[i];
         px[i] = v.position.x, py[i] = v.position.y, pz[i] = v.position.z;
         nx[i] = v.normal.x, ny[i] = v.normal.y, nz[i] = v.normal.z;
         lum[i] = std::max(0.0f, luminance(v.power) + luminance(v.glossyPower));
-        if (v.glossy()) {
-            glossy[i / 4] |= std::uint8_t(1u << (i % 4));
-            anyGlossy = true;
+        if (v.glossy() || v.omni) {
+            general[i / 4] |= std::uint8_t(1u << (i % 4));
+            anyGeneral = true;
         }
     }
 }

@@ -33,9 +33,12 @@ struct VplChoice {
     /// positions and normals to a multiple of eight): position, normal, brightness; also what
     /// the connections of a Lambertian point read (LambertianLinks).
     std::vector<float> px, py, pz, nx, ny, nz, lum;
-    bool anyGlossy = false;
-    std::vector<std::uint8_t> glossy;  ///< per four VPLs: bit i where VPL 4k + i is glossy
-    std::uint32_t glossyBits(std::size_t first) const { return glossy[first / 4]; }
+    /// Per four VPLs: bit i where VPL 4k + i needs the general connection rather than the
+    /// Lambertian one (LambertianLinks): a glossy VPL, or an omni light sample (a point light,
+    /// whose cosine is 1, when a set's light samples are laid out).
+    std::vector<std::uint8_t> general;
+    bool anyGeneral = false;
+    std::uint32_t generalBits(std::size_t first) const { return general[first / 4]; }
 
     static constexpr float kUniformShare = 0.1f;
 
@@ -44,6 +47,8 @@ struct VplChoice {
     bool laidOut(std::size_t vpls) const { return vpls > 0 && lum.size() == (vpls + 3) / 4 * 4; }
     /// Lays out `vpls` for the choice of `perPoint` per point with this set's `offset`.
     void prepare(const std::vector<Vpl>& vpls, std::uint32_t perPoint, float offset);
+    /// Lays out `vpls` for the Lambertian connections only (no choice among them).
+    void layOut(const std::vector<Vpl>& vpls) { prepare(vpls, 0, 0.5f); }
 
     /// A chosen VPL: its index in the set and the factor its contribution is scaled by.
     struct Pick {
