@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -51,6 +53,15 @@ float maxSharpnessOf(const std::vector<Material>& materials) {
         if (m.reflection == Reflection::Glossy && !m.glass && !isBlack(m.specular))
             s = std::max(s, 0.5f * (m.phongExponent + 2.0f));
     return s;
+}
+
+/// The links LambertianLinks keeps from `origin` to the first `count` VPLs laid out in `lanes`,
+/// in a buffer of the calling thread's that the next call overwrites.
+std::span<const LambertianLink> linksOf(const VplChoice& lanes, std::size_t count, glm::vec3 origin,
+                                        glm::vec3 n, glm::vec3 f, float dmin2) {
+    thread_local std::vector<LambertianLink> links;
+    if (links.size() < count) links.resize(count);
+    return {links.data(), lambertianLinks(lanes, count, origin, n, f, dmin2, links.data())};
 }
 
 }  // namespace
@@ -150,12 +161,8 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
         // A Lambertian point tests its light samples many at a time (LambertianLinks) with
         // addDirect's arithmetic: r is 1 and the bound's distance 0, so g is cos cos / d^2 as
         // there. Point lights (omni: a cosine of 1) are listed for addDirect itself.
-        thread_local std::vector<LambertianLink> links;
-        if (links.size() < set.direct.size()) links.resize(set.direct.size());
-        const std::size_t kept = lambertianLinks(set.directLanes, set.direct.size(), origin, n,
-                                                 x.faceNormal, 0.0f, links.data());
-        for (std::size_t k = 0; k < kept; ++k) {
-            const LambertianLink& link = links[k];
+        for (const LambertianLink& link :
+             linksOf(set.directLanes, set.direct.size(), origin, n, x.faceNormal, 0.0f)) {
             const Vpl& v = set.direct[link.vpl];
             if (v.omni)
                 addDirect(v, link.vpl);
@@ -241,14 +248,9 @@ void EndPointShader::connectLambertian(const ShadingPoint& x, const LightingSet&
                                        glm::vec3 origin, ShadowQueue& queue) const {
     // Every VPL of the set, tested many at a time with the scalar connection's arithmetic
     // (LambertianLinks), so that every value has the same bits as there.
-    const std::size_t count = set.indirect.size();
-    thread_local std::vector<LambertianLink> links;
-    if (links.size() < count) links.resize(count);
-    const std::size_t kept = lambertianLinks(set.vplChoice, count, origin, x.brdf.normal,
-                                             x.faceNormal, set.minDistance2, links.data());
     const auto first = std::uint32_t(set.direct.size());
-    for (std::size_t k = 0; k < kept; ++k) {
-        const LambertianLink& link = links[k];
+    for (const LambertianLink& link : linksOf(set.vplChoice, set.indirect.size(), origin,
+                                              x.brdf.normal, x.faceNormal, set.minDistance2)) {
         const Vpl& vpl = set.indirect[link.vpl];
         if (vpl.glossy()) {  // the general connection, as the scalar path takes it
             connectVpl(x, set, link.vpl, 1.0f, origin, nullptr, queue);

@@ -21,9 +21,11 @@ constexpr std::uint32_t kGlossyBytes = 4;       // shared-exponent RGB
 std::uint32_t bytesPerPixel(std::uint32_t mask);
 
 /// The zstd level tiles are compressed at. Negative: literals are stored raw (no Huffman
-/// stage). On the default scene's tiles the wire grows 0.5 % (4.33 -> 4.35 bytes/pixel) and
-/// zstd decodes a third faster (igi-codec-bench: 8.4 -> 5.8 ns/pixel), which was the largest
-/// cost of the master's compositing thread after the filter. Any level decodes alike.
+/// stage), and zstd decodes a third faster for a wire about 1 % larger: igi-codec-bench at
+/// level 1 and -1 gave zstd 8.4 -> 5.7 ns/pixel and 4.08 -> 4.13 bytes/pixel, and the default
+/// scene end to end went 4.42 -> 4.45 bytes/pixel (docs/PERFORMANCE.md, section 5, builds
+/// db25edc and d261781). zstd decoding was the largest cost of the master's compositing thread
+/// after the filter. Any level decodes alike.
 constexpr int kTileZstdLevel = -1;
 
 /// Quantizes the planes of `channels`, lays them out planar (and, within a plane, one byte of

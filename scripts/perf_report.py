@@ -718,7 +718,7 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
     # 5 -----------------------------------------------------------------------------------------
     w("## 5. Bytes on the wire")
     w("")
-    w("Per pixel, each plane is quantized before zstd (level -1: literals stored raw, which decode a third faster for 0.5 % more bytes) compresses the tile "
+    w("Per pixel, each plane is quantized before zstd (level -1: literals stored raw, which zstd decodes faster for a few more bytes; protocol/ChannelCodec.h gives the measurement) compresses the tile "
       "(docs/PROTOCOL.md, \"Channels\"); as 32-bit floats a pixel of all six planes would be "
       "16 floats = 64 bytes:")
     w("")
