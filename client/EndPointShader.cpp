@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <span>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -57,11 +56,11 @@ float maxSharpnessOf(const std::vector<Material>& materials) {
 
 /// The links LambertianLinks keeps from `origin` to the first `count` VPLs laid out in `lanes`,
 /// in a buffer of the calling thread's that the next call overwrites.
-std::span<const LambertianLink> linksOf(const VplChoice& lanes, std::size_t count, glm::vec3 origin,
-                                        glm::vec3 n, glm::vec3 f, float dmin2) {
-    thread_local std::vector<LambertianLink> links;
-    if (links.size() < count) links.resize(count);
-    return {links.data(), lambertianLinks(lanes, count, origin, n, f, dmin2, links.data())};
+const LinkBuffer& linksOf(const VplChoice& lanes, std::size_t count, glm::vec3 origin, glm::vec3 n,
+                          glm::vec3 f, float dmin2) {
+    thread_local LinkBuffer links;
+    lambertianLinks(lanes, count, origin, n, f, dmin2, links);
+    return links;
 }
 
 }  // namespace
@@ -161,8 +160,10 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
         // A Lambertian point tests its light samples many at a time (LambertianLinks) with
         // addDirect's arithmetic: r is 1 and the bound's distance 0, so g is cos cos / d^2 as
         // there. Point lights (omni: a cosine of 1) are listed for addDirect itself.
-        for (const LambertianLink& link :
-             linksOf(set.directLanes, set.direct.size(), origin, n, x.faceNormal, 0.0f)) {
+        const LinkBuffer& links =
+            linksOf(set.directLanes, set.direct.size(), origin, n, x.faceNormal, 0.0f);
+        for (std::size_t k = 0; k < links.size(); ++k) {
+            const LambertianLink link = links[k];
             const Vpl& v = set.direct[link.vpl];
             if (v.omni)
                 addDirect(v, link.vpl);
@@ -249,8 +250,10 @@ void EndPointShader::connectLambertian(const ShadingPoint& x, const LightingSet&
     // Every VPL of the set, tested many at a time with the scalar connection's arithmetic
     // (LambertianLinks), so that every value has the same bits as there.
     const auto first = std::uint32_t(set.direct.size());
-    for (const LambertianLink& link : linksOf(set.vplChoice, set.indirect.size(), origin,
-                                              x.brdf.normal, x.faceNormal, set.minDistance2)) {
+    const LinkBuffer& links = linksOf(set.vplChoice, set.indirect.size(), origin, x.brdf.normal,
+                                      x.faceNormal, set.minDistance2);
+    for (std::size_t k = 0; k < links.size(); ++k) {
+        const LambertianLink link = links[k];
         const Vpl& vpl = set.indirect[link.vpl];
         if (vpl.glossy()) {  // the general connection, as the scalar path takes it
             connectVpl(x, set, link.vpl, 1.0f, origin, nullptr, queue);

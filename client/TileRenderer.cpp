@@ -27,16 +27,31 @@ int chunkCount(const Tile& tile, int n, int m) {
     return ((columns + kChunkColumns - 1) / kChunkColumns) * ((rows + kChunkRows - 1) / kChunkRows);
 }
 
-// The tile's pixel indices (row-major in its strided grid) in chunk c; returns their number.
-int chunkPixels(const Tile& tile, int n, int m, int c, int* indices) {
+// A pixel of a chunk: its index in the tile (row-major in the tile's strided grid) and its
+// column and row there.
+struct ChunkPixel {
+    int index, column, row;
+};
+
+// The tile's pixels in chunk c; returns their number. The grid's column and row come with each
+// index, so the image coordinates cost no division per pixel (Tile::pixelX/Y divide twice).
+int chunkPixels(const Tile& tile, int n, int m, int c, ChunkPixel* pixels) {
     const int columns = tile.columns(n), rows = tile.rows(m);
     const int across = (columns + kChunkColumns - 1) / kChunkColumns;
     const int x0 = (c % across) * kChunkColumns, y0 = (c / across) * kChunkRows;
     int count = 0;
     for (int y = y0; y < std::min(rows, y0 + kChunkRows); ++y)
         for (int x = x0; x < std::min(columns, x0 + kChunkColumns); ++x)
-            indices[count++] = y * columns + x;
+            pixels[count++] = {y * columns + x, x, y};
     return count;
+}
+
+// A chunk pixel's image coordinates: Tile::pixelX and pixelY without their divisions.
+int imageX(const Tile& tile, const ChunkPixel& p, int n) {
+    return tile.x0 + tile.kx + p.column * n;
+}
+int imageY(const Tile& tile, const ChunkPixel& p, int m) {
+    return tile.y0 + tile.ky + p.row * m;
 }
 
 std::unique_ptr<LightingMethod> makeLightingMethod(
@@ -129,12 +144,13 @@ void TileRenderer::renderChunk(TileJob& job, int chunk) {
     RayCounters counters;
     proto::TileStats local;
     TileChannels& out = job.channels;
-    int indices[kChunkPixels];
-    const int count = chunkPixels(job.tile, n, m, chunk, indices);
+    ChunkPixel chunkPixel[kChunkPixels];
+    const int count = chunkPixels(job.tile, n, m, chunk, chunkPixel);
     if (settings_.integrator == IntegratorKind::Path) {
         for (int k = 0; k < count; ++k) {
-            const int i = indices[k];
-            const int x = job.tile.pixelX(i, n), y = job.tile.pixelY(i, n, m);
+            const int i = chunkPixel[k].index;
+            const int x = imageX(job.tile, chunkPixel[k], n),
+                      y = imageY(job.tile, chunkPixel[k], m);
             out.unfiltered[i] =
                 path_.shade(x, y, std::uint32_t(y * image_.width + x), job.frame, counters);
         }
@@ -153,12 +169,13 @@ void TileRenderer::renderChunk(TileJob& job, int chunk) {
         IgiIntegrator::Pixel pixels[kChunkPixels];
         PixelResult results[kChunkPixels];
         for (int k = 0; k < count; ++k) {
-            const int x = job.tile.pixelX(indices[k], n), y = job.tile.pixelY(indices[k], n, m);
+            const int x = imageX(job.tile, chunkPixel[k], n),
+                      y = imageY(job.tile, chunkPixel[k], m);
             pixels[k] = {x, y, std::uint32_t(y * image_.width + x)};
         }
         igi_.shade(pixels, count, job.frame, *set, results, counters);
         for (int k = 0; k < count; ++k) {
-            const int i = indices[k], x = pixels[k].x, y = pixels[k].y;
+            const int i = chunkPixel[k].index, x = pixels[k].x, y = pixels[k].y;
             PixelResult& r = results[k];
             if (set->screenCaustics && r.firstHit) {
                 const ScreenCaustics& c = *set->screenCaustics;
