@@ -177,7 +177,8 @@ started=$SECONDS
 
 # ---------------------------------------------------------------------------------------------
 # 1. Distance to the limit: igi-bench on 1 thread (per core) and on every core, repeated (the
-#    report takes medians: others' load comes and goes between the raw and the client phase).
+#    report takes medians: others' load comes and goes, though igi-bench's raw and client
+#    measurements take turns in rounds).
 load bench
 for i in "${!scene_names[@]}"; do
   for threads in 1 "$(nproc)"; do

@@ -423,13 +423,16 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
     w("`igi-bench --scene S --threads T --frames %s --segments %s --width 640 --height 480` "
       "(section 1 of the script) measures, in one process, on the same scene and the same "
       "threads: random shadow segments through `rtcOccluded1` and through 8- and 16-wide "
-      "packets (`rtcOccluded8`, `rtcOccluded16`), then the client's tile renderer rendering whole frames at the paper's "
+      "packets (`rtcOccluded8`, `rtcOccluded16`), and the client's tile renderer rendering whole frames at the paper's "
       "settings (3 x 3 interleaving, 4 direct + 18 indirect shadow rays per pixel, 500 caustic "
-      "photons per set; the defaults of `RenderSettings`), every ray counted."
-      % (meta.get("bench_frames", "?"), meta.get("bench_segments", "?")))
+      "photons per set; the defaults of `RenderSettings`), every ray counted. The two take "
+      "turns, in %s rounds of a share of the segments and one frame each, after a warm-up of "
+      "each (a pass over the segments, one frame); every figure sums its rounds, so a load that "
+      "comes or goes during the run weighs on both sides."
+      % (meta.get("bench_frames", "?"), meta.get("bench_segments", "?"), meta.get("bench_frames", "?")))
     w("")
     w("Each row is the median of %s runs (each figure separately; the ratios are medians of "
-      "the ratios within each run, whose raw and client phases ran back to back); the range of "
+      "the ratios within each run); the range of "
       "*all / occluded1* over the runs shows how much the machine's load moved it."
       % meta.get("bench_repeats", "?"))
     w("")

@@ -3,12 +3,17 @@
 //   - raw Embree occlusion throughput: random shadow segments with rtcOccluded1 and in packets of
 //     8 and 16 (rtcOccluded8, rtcOccluded16), on the given number of threads;
 //   - a client's throughput rendering whole frames of tiles (IGI, every ray counted);
-// and reports the ratio. Results go to stdout as JSON.
+// and reports the ratio. The two take turns: each round traces its share of the segments raw,
+// then renders one frame, and every figure sums its rounds, so a load that comes or goes while
+// the bench runs weighs on both sides alike. Results go to stdout as JSON.
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <ctime>
 #include <functional>
 #include <iostream>
+#include <mutex>
+#include <utility>
 
 #include <embree3/rtcore.h>
 #include <spdlog/spdlog.h>
@@ -64,22 +69,28 @@ void forEachChunkOnPool(std::size_t count, igi::ThreadPool& pool,
     pool.waitIdle();
 }
 
-// Rays per second of wall time and per CPU second.
-struct Rate {
-    double wall = 0, cpu = 0;
-    Rate(double rays, const Timing& t) : wall(rays / t.wall()), cpu(rays / t.cpu()) {}
+// Rays traced and the wall and CPU seconds they took, summed over rounds.
+struct Measured {
+    double rays = 0, wall = 0, cpu = 0;
+    void add(double traced, const Timing& t) {
+        rays += traced;
+        wall += t.wall();
+        cpu += t.cpu();
+    }
+    double perSecond() const { return rays / wall; }
+    double perCpuSecond() const { return rays / cpu; }
 };
 
-// Shadow rays per second through rtcOccluded1, one ray at a time.
-Rate occluded1(RTCScene scene, const std::vector<igi::ShadowSegment>& segs, igi::ThreadPool& pool,
-               std::size_t& blocked) {
+// Segments [begin, end) through rtcOccluded1, one ray at a time; returns how many are blocked.
+std::size_t occluded1(RTCScene scene, const std::vector<igi::ShadowSegment>& segs,
+                      std::size_t begin, std::size_t end, igi::ThreadPool& pool, Measured& into) {
     std::atomic<std::size_t> hits{0};
     const Timing timing;
-    forEachChunkOnPool((segs.size() + kChunk - 1) / kChunk, pool, [&](std::size_t c) {
+    forEachChunkOnPool((end - begin + kChunk - 1) / kChunk, pool, [&](std::size_t c) {
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         std::size_t local = 0;
-        for (std::size_t i = c * kChunk; i < std::min(segs.size(), (c + 1) * kChunk); ++i) {
+        for (std::size_t i = begin + c * kChunk; i < std::min(end, begin + (c + 1) * kChunk); ++i) {
             RTCRay ray{};
             ray.org_x = segs[i].origin.x, ray.org_y = segs[i].origin.y,
             ray.org_z = segs[i].origin.z;
@@ -93,26 +104,27 @@ Rate occluded1(RTCScene scene, const std::vector<igi::ShadowSegment>& segs, igi:
         }
         hits += local;
     });
-    blocked = hits;
-    return Rate(double(segs.size()), timing);
+    into.add(double(end - begin), timing);
+    return hits;
 }
 
-// Shadow rays per second through rtcOccluded8 or rtcOccluded16: packets of N consecutive
+// Segments [begin, end) through rtcOccluded8 or rtcOccluded16: packets of N consecutive
 // segments.
 template <int N, typename Packet>
-Rate occludedN(RTCScene scene, const std::vector<igi::ShadowSegment>& segs, igi::ThreadPool& pool) {
+void occludedN(RTCScene scene, const std::vector<igi::ShadowSegment>& segs, std::size_t begin,
+               std::size_t end, igi::ThreadPool& pool, Measured& into) {
     const Timing timing;
-    forEachChunkOnPool((segs.size() + kChunk - 1) / kChunk, pool, [&](std::size_t c) {
+    forEachChunkOnPool((end - begin + kChunk - 1) / kChunk, pool, [&](std::size_t c) {
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
-        const std::size_t end = std::min(segs.size(), (c + 1) * kChunk);
-        for (std::size_t i = c * kChunk; i < end; i += N) {
+        const std::size_t last = std::min(end, begin + (c + 1) * kChunk);
+        for (std::size_t i = begin + c * kChunk; i < last; i += N) {
             alignas(64) int valid[N];
             alignas(64) Packet ray{};
             for (int j = 0; j < N; ++j) {
                 const std::size_t k = i + j;
-                valid[j] = k < end ? -1 : 0;
-                if (k >= end) continue;
+                valid[j] = k < last ? -1 : 0;
+                if (k >= last) continue;
                 ray.org_x[j] = segs[k].origin.x, ray.org_y[j] = segs[k].origin.y,
                 ray.org_z[j] = segs[k].origin.z;
                 ray.dir_x[j] = segs[k].direction.x, ray.dir_y[j] = segs[k].direction.y,
@@ -127,7 +139,7 @@ Rate occludedN(RTCScene scene, const std::vector<igi::ShadowSegment>& segs, igi:
                 rtcOccluded16(valid, scene, &context, &ray);
         }
     });
-    return Rate(double(segs.size()), timing);
+    into.add(double(end - begin), timing);
 }
 
 }  // namespace
@@ -146,7 +158,10 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--segments", segments, "random shadow segments for the raw measurement")
         ->capture_default_str();
-    app.add_option("--frames", frames, "frames the client renders")->capture_default_str();
+    app.add_option("--frames", frames,
+                   "rounds: frames the client renders, each after its share of the raw segments")
+        ->check(CLI::Range(1, 1000000))
+        ->capture_default_str();
     app.add_flag("--accumulated", accumulated,
                  "render the frames as frames 1.. of an accumulation (a view held still: the "
                  "converging estimator), not each as the first frame after a change");
@@ -166,26 +181,25 @@ int main(int argc, char** argv) {
         igi::TraceableScene traceable(geometry);
 
         const auto segs = igi::randomShadowSegments(traceable, segments, 12345);
-        std::size_t blocked = 0;
-        occluded1(traceable.embreeScene(), segs, pool, blocked);  // warm up caches and threads
-        const Rate raw1 = occluded1(traceable.embreeScene(), segs, pool, blocked);
-        const Rate raw8 = occludedN<8, RTCRay8>(traceable.embreeScene(), segs, pool);
-        const Rate raw16 = occludedN<16, RTCRay16>(traceable.embreeScene(), segs, pool);
+        const RTCScene embree = traceable.embreeScene();
+        Measured unused, raw1, raw8, raw16, client;  // client.rays: its shadow rays
+        std::uint64_t clientRays = 0;
+        occluded1(embree, segs, 0, segs.size(), pool, unused);  // warm up caches and threads
 
         igi::TileRenderer renderer(traceable, igi::SceneState::of(scene), scene.render, scene.image,
                                    igi::LightingContext{&scene, 0, 0, nullptr});
         const auto& s = scene.render;
         const auto tiles = igi::makeTiles(scene.image.width, scene.image.height, s.interleaveX,
                                           s.interleaveY, s.tileSize);
-        std::uint64_t rays = 0, shadowRays = 0;
-        const Timing timing;
-        for (int f = 0; f < frames; ++f) {
+        // One frame of the client's: its rays and shadow rays.
+        auto renderFrame = [&](std::uint32_t f) {
+            std::uint64_t rays = 0, shadowRays = 0;
             std::atomic<std::size_t> remaining{tiles.size()};
             std::mutex mutex;
             std::condition_variable done;
             for (std::uint32_t t = 0; t < tiles.size(); ++t) {
-                renderer.render(pool, std::uint32_t(f), accumulated ? std::uint32_t(f + 1) : 0, t,
-                                tiles[t], [&](igi::proto::TileResult&& r) {
+                renderer.render(pool, f, accumulated ? f + 1 : 0, t, tiles[t],
+                                [&](igi::proto::TileResult&& r) {
                                     std::lock_guard lock(mutex);
                                     rays += r.stats.rays;
                                     shadowRays += r.stats.shadowRays;
@@ -194,9 +208,26 @@ int main(int argc, char** argv) {
             }
             std::unique_lock lock(mutex);
             done.wait(lock, [&] { return remaining == 0; });
+            return std::pair{rays, shadowRays};
+        };
+        // The client warms up too (its threads' buffers, the first touch of its memory), with a
+        // frame of its own that no round renders again.
+        renderFrame(std::uint32_t(frames));
+
+        std::size_t blocked = 0;
+        for (int f = 0; f < frames; ++f) {
+            const std::size_t begin = segs.size() * std::size_t(f) / std::size_t(frames),
+                              end = segs.size() * std::size_t(f + 1) / std::size_t(frames);
+            blocked += occluded1(embree, segs, begin, end, pool, raw1);
+            occludedN<8, RTCRay8>(embree, segs, begin, end, pool, raw8);
+            occludedN<16, RTCRay16>(embree, segs, begin, end, pool, raw16);
+            const Timing timing;
+            const auto [rays, shadowRays] = renderFrame(std::uint32_t(f));
+            client.add(double(shadowRays), timing);
+            clientRays += rays;
         }
-        const double renderSeconds = timing.wall(), renderCpu = timing.cpu();
-        const Rate clientShadow(double(shadowRays), timing), clientRays(double(rays), timing);
+        const double clientRaysPerSecond = double(clientRays) / client.wall,
+                     clientRaysPerCpuSecond = double(clientRays) / client.cpu;
 
         nlohmann::json out{
             {"scene", sceneFile},
@@ -204,30 +235,32 @@ int main(int argc, char** argv) {
             {"threads", pool.size()},
             {"segments", segs.size()},
             {"segments_blocked", double(blocked) / double(segs.size())},
-            {"embree_occluded1_rays_per_second", raw1.wall},
-            {"embree_occluded8_rays_per_second", raw8.wall},
-            {"embree_occluded16_rays_per_second", raw16.wall},
-            {"embree_occluded1_rays_per_cpu_second", raw1.cpu},
-            {"embree_occluded8_rays_per_cpu_second", raw8.cpu},
-            {"embree_occluded16_rays_per_cpu_second", raw16.cpu},
+            {"rounds", frames},
+            {"embree_occluded1_rays_per_second", raw1.perSecond()},
+            {"embree_occluded8_rays_per_second", raw8.perSecond()},
+            {"embree_occluded16_rays_per_second", raw16.perSecond()},
+            {"embree_occluded1_rays_per_cpu_second", raw1.perCpuSecond()},
+            {"embree_occluded8_rays_per_cpu_second", raw8.perCpuSecond()},
+            {"embree_occluded16_rays_per_cpu_second", raw16.perCpuSecond()},
             {"client_packet_width", traceable.packetWidth()},
             {"scene_layout", traceable.layout() == igi::SceneLayout::Flat ? "flat" : "instanced"},
             {"client_accumulated", accumulated},
             {"client_frames", frames},
             {"client_width", scene.image.width},
             {"client_height", scene.image.height},
-            {"client_seconds", renderSeconds},
-            {"client_cpu_seconds", renderCpu},
-            {"client_rays", rays},
-            {"client_shadow_rays", shadowRays},
-            {"client_rays_per_second", clientRays.wall},
-            {"client_shadow_rays_per_second", clientShadow.wall},
-            {"client_rays_per_cpu_second", clientRays.cpu},
-            {"client_shadow_rays_per_cpu_second", clientShadow.cpu},
-            {"client_rays_over_embree_occluded1", clientRays.wall / raw1.wall},
-            {"client_shadow_rays_over_embree_occluded8", clientShadow.wall / raw8.wall},
-            {"client_shadow_rays_over_embree_occluded16", clientShadow.wall / raw16.wall},
-            {"client_shadow_rays_over_embree_occluded16_cpu", clientShadow.cpu / raw16.cpu}};
+            {"client_seconds", client.wall},
+            {"client_cpu_seconds", client.cpu},
+            {"client_rays", clientRays},
+            {"client_shadow_rays", std::uint64_t(client.rays)},
+            {"client_rays_per_second", clientRaysPerSecond},
+            {"client_shadow_rays_per_second", client.perSecond()},
+            {"client_rays_per_cpu_second", clientRaysPerCpuSecond},
+            {"client_shadow_rays_per_cpu_second", client.perCpuSecond()},
+            {"client_rays_over_embree_occluded1", clientRaysPerSecond / raw1.perSecond()},
+            {"client_shadow_rays_over_embree_occluded8", client.perSecond() / raw8.perSecond()},
+            {"client_shadow_rays_over_embree_occluded16", client.perSecond() / raw16.perSecond()},
+            {"client_shadow_rays_over_embree_occluded16_cpu",
+             client.perCpuSecond() / raw16.perCpuSecond()}};
         std::cout << out.dump(2) << '\n';
         return 0;
     } catch (const std::exception& e) {
