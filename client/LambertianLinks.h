@@ -28,8 +28,9 @@ struct LambertianLink {
 
 /// Where lambertianLinks writes its links: side by side, each field in an array of its own, so
 /// that the AVX2 kernel writes eight lanes with one store per field, the kept lanes packed to
-/// the front, without a branch per kept lane (the kept lanes are few and unpredictable: a
-/// branch per lane cost more than the connection's arithmetic).
+/// the front, without a branch per kept lane (which lanes are kept is unpredictable). On the
+/// Cornell boxes that measured within the noise of the branching version (igi-bench): the
+/// kernel is bound by its square root and divisions, whose bits must be the scalar ones.
 class LinkBuffer {
   public:
     /// Room for the links to `count` VPLs (plus a lane group: a packed store writes whole groups).
