@@ -34,7 +34,8 @@ struct ChunkPixel {
 };
 
 // The tile's pixels in chunk c; returns their number. The grid's column and row come with each
-// index, so the image coordinates cost no division per pixel (Tile::pixelX/Y divide twice).
+// index, so the image coordinates (Tile::columnX/rowY) cost no division per pixel, as
+// Tile::pixelX/Y's do.
 int chunkPixels(const Tile& tile, int n, int m, int c, ChunkPixel* pixels) {
     const int columns = tile.columns(n), rows = tile.rows(m);
     const int across = (columns + kChunkColumns - 1) / kChunkColumns;
@@ -44,14 +45,6 @@ int chunkPixels(const Tile& tile, int n, int m, int c, ChunkPixel* pixels) {
         for (int x = x0; x < std::min(columns, x0 + kChunkColumns); ++x)
             pixels[count++] = {y * columns + x, x, y};
     return count;
-}
-
-// A chunk pixel's image coordinates: Tile::pixelX and pixelY without their divisions.
-int imageX(const Tile& tile, const ChunkPixel& p, int n) {
-    return tile.x0 + tile.kx + p.column * n;
-}
-int imageY(const Tile& tile, const ChunkPixel& p, int m) {
-    return tile.y0 + tile.ky + p.row * m;
 }
 
 std::unique_ptr<LightingMethod> makeLightingMethod(
@@ -149,8 +142,8 @@ void TileRenderer::renderChunk(TileJob& job, int chunk) {
     if (settings_.integrator == IntegratorKind::Path) {
         for (int k = 0; k < count; ++k) {
             const int i = chunkPixel[k].index;
-            const int x = imageX(job.tile, chunkPixel[k], n),
-                      y = imageY(job.tile, chunkPixel[k], m);
+            const int x = job.tile.columnX(chunkPixel[k].column, n),
+                      y = job.tile.rowY(chunkPixel[k].row, m);
             out.unfiltered[i] =
                 path_.shade(x, y, std::uint32_t(y * image_.width + x), job.frame, counters);
         }
@@ -169,8 +162,8 @@ void TileRenderer::renderChunk(TileJob& job, int chunk) {
         IgiIntegrator::Pixel pixels[kChunkPixels];
         PixelResult results[kChunkPixels];
         for (int k = 0; k < count; ++k) {
-            const int x = imageX(job.tile, chunkPixel[k], n),
-                      y = imageY(job.tile, chunkPixel[k], m);
+            const int x = job.tile.columnX(chunkPixel[k].column, n),
+                      y = job.tile.rowY(chunkPixel[k].row, m);
             pixels[k] = {x, y, std::uint32_t(y * image_.width + x)};
         }
         igi_.shade(pixels, count, job.frame, *set, results, counters);

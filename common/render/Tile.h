@@ -19,9 +19,12 @@ struct Tile {
     int rows(int m) const { return height > ky ? (height - ky + m - 1) / m : 0; }
     int pixelCount(int n, int m) const { return columns(n) * rows(m); }
 
+    /// Image coordinates of the pixel in column c, row r of the tile's strided grid.
+    int columnX(int c, int n) const { return x0 + kx + c * n; }
+    int rowY(int r, int m) const { return y0 + ky + r * m; }
     /// Image coordinates of the tile's i-th pixel (row-major in the strided grid).
-    int pixelX(int i, int n) const { return x0 + kx + (i % columns(n)) * n; }
-    int pixelY(int i, int n, int m) const { return y0 + ky + (i / columns(n)) * m; }
+    int pixelX(int i, int n) const { return columnX(i % columns(n), n); }
+    int pixelY(int i, int n, int m) const { return rowY(i / columns(n), m); }
 
     bool operator==(const Tile&) const = default;
 };
