@@ -1,6 +1,13 @@
 #include "ShadowQueue.h"
 
 #include <algorithm>
+#include <cstddef>
+
+#include "math/Lanes.h"
+
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
 
 namespace igi {
 
@@ -13,7 +20,7 @@ void ShadowQueue::clear() {
 
 std::uint32_t ShadowQueue::beginPoint(glm::vec3 origin) {
     currentPoint_ = std::uint32_t(origins_.size());
-    origins_.push_back(origin);
+    origins_.push_back({origin.x, origin.y, origin.z, 0.0f});
     pointBegin_.push_back(std::uint32_t(size_));
     return currentPoint_;
 }
@@ -29,24 +36,71 @@ void ShadowQueue::sortByTarget() {
     for (std::uint32_t i = 0; i < size_; ++i) order_[counts_[bucket(entries_[i].target)]++] = i;
 }
 
+namespace {
+
+// Lanes lane .. lane + 3 of a packet's SoA rays from four entries (each its direction and tfar,
+// and its point's origin: four floats apiece), transposed four at a time rather than written
+// field by field.
+template <class Rays>
+void setFour(Rays& rays, int lane, const float* const ray[4], const float* const origin[4]) {
+#if defined(__SSE2__)
+    __m128 r0 = _mm_loadu_ps(ray[0]), r1 = _mm_loadu_ps(ray[1]), r2 = _mm_loadu_ps(ray[2]),
+           r3 = _mm_loadu_ps(ray[3]);
+    _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+    _mm_store_ps(&rays.dir_x[lane], r0);
+    _mm_store_ps(&rays.dir_y[lane], r1);
+    _mm_store_ps(&rays.dir_z[lane], r2);
+    _mm_store_ps(&rays.tfar[lane], r3);
+    __m128 o0 = _mm_loadu_ps(origin[0]), o1 = _mm_loadu_ps(origin[1]), o2 = _mm_loadu_ps(origin[2]),
+           o3 = _mm_loadu_ps(origin[3]);
+    _MM_TRANSPOSE4_PS(o0, o1, o2, o3);
+    _mm_store_ps(&rays.org_x[lane], o0);
+    _mm_store_ps(&rays.org_y[lane], o1);
+    _mm_store_ps(&rays.org_z[lane], o2);
+#else
+    for (int m = 0; m < 4; ++m) {
+        rays.dir_x[lane + m] = ray[m][0];
+        rays.dir_y[lane + m] = ray[m][1];
+        rays.dir_z[lane + m] = ray[m][2];
+        rays.tfar[lane + m] = ray[m][3];
+        rays.org_x[lane + m] = origin[m][0];
+        rays.org_y[lane + m] = origin[m][1];
+        rays.org_z[lane + m] = origin[m][2];
+    }
+#endif
+}
+
+}  // namespace
+
 template <int N>
 void ShadowQueue::traceAs(const TraceableScene& scene, bool sorted, RayCounters& counters) {
     thread_local TraceableScene::ShadowPacket<N> packet;  // its fixed fields are set once
+    static_assert(offsetof(Entry, tfar) == offsetof(Entry, direction) + 12);
     bool blocked[N];
+    std::uint32_t index[N];
     for (std::size_t i = 0; i < size_; i += N) {
         const int count = int(std::min(size_ - i, std::size_t(N)));
-        for (int k = 0; k < count; ++k) {
-            const Entry& e = entries_[sorted ? order_[i + std::size_t(k)] : i + std::size_t(k)];
-            packet.set(k, origins_[e.point], e.direction, e.tfar);
-        }
-        if (count == 1) {  // a packet of one ray costs more than the ray alone
-            const Entry& e = entries_[sorted ? order_[i] : i];
-            blocked[0] = scene.occluded(origins_[e.point], e.direction, e.tfar, counters);
-        } else {
-            scene.occluded(packet, count, blocked, counters);
-        }
         for (int k = 0; k < count; ++k)
-            blocked_[sorted ? order_[i + std::size_t(k)] : i + std::size_t(k)] = blocked[k];
+            index[k] = sorted ? order_[i + std::size_t(k)] : std::uint32_t(i + std::size_t(k));
+        if (count == 1) {  // a packet of one ray costs more than the ray alone
+            const Entry& e = entries_[index[0]];
+            const Origin& o = origins_[e.point];
+            blocked_[index[0]] = scene.occluded({o.x, o.y, o.z}, e.direction, e.tfar, counters);
+            continue;
+        }
+        // Lanes past `count` repeat the last ray: they are switched off, but filled whole.
+        for (int k = count; k < (count + 3) / 4 * 4; ++k) index[k] = index[count - 1];
+        for (int k = 0; k < count; k += 4) {
+            const float *ray[4], *origin[4];
+            for (int m = 0; m < 4; ++m) {
+                const Entry& e = entries_[index[k + m]];
+                ray[m] = &e.direction.x;
+                origin[m] = &origins_[e.point].x;
+            }
+            setFour(packet.rays, k, ray, origin);
+        }
+        scene.occluded(packet, count, blocked, counters);
+        for (int k = 0; k < count; ++k) blocked_[index[k]] = blocked[k];
     }
 }
 
@@ -65,14 +119,24 @@ void ShadowQueue::trace(const TraceableScene& scene, RayCounters& counters) {
 void ShadowQueue::sum(std::uint32_t point, glm::vec3& irradiance, glm::vec3& glossy) const {
     const std::size_t begin = pointBegin_[point];
     const std::size_t end = point + 1 < pointBegin_.size() ? pointBegin_[point + 1] : size_;
-    glm::vec3 e(0.0f), g(0.0f);
+    // Without a branch per entry (whether a ray was blocked is unpredictable): a blocked
+    // entry adds +0, which leaves every lane's sum as it was (a sum that starts at +0 and adds
+    // only unblocked values is never -0). Lane by lane the additions are the scalar ones.
+    using lanes::F4;
+    using lanes::I4;
+    static_assert(offsetof(Entry, glossy) == offsetof(Entry, irradiance) + 12);
+    const I4 xyz = {-1, -1, -1, 0};
+    F4 e = {0, 0, 0, 0}, g = {0, 0, 0, 0};
     for (std::size_t i = begin; i < end; ++i) {
-        if (blocked_[i]) continue;
-        e += entries_[i].irradiance;
-        g += entries_[i].glossy;
+        const I4 open = I4{0, 0, 0, 0} + (std::int32_t(blocked_[i]) - 1);  // blocked_ is 0 or 1
+        // irradiance.xyz and glossy.x; then glossy.xyz and the point's index (dropped).
+        const F4 a = lanes::load<F4>(&entries_[i].irradiance.x);
+        const F4 b = lanes::load<F4>(&entries_[i].glossy.x);
+        e += F4(I4(a) & open);
+        g += F4(I4(b) & open & xyz);
     }
-    irradiance = e;
-    glossy = g;
+    irradiance = glm::vec3(e[0], e[1], e[2]);
+    glossy = glm::vec3(g[0], g[1], g[2]);
 }
 
 }  // namespace igi

@@ -64,8 +64,12 @@ class ShadowQueue {
     std::vector<Entry> entries_;
     std::size_t size_ = 0;
     std::uint32_t currentPoint_ = 0;
-    std::uint32_t top_ = 0;                  ///< one past the largest shared target queued
-    std::vector<glm::vec3> origins_;         ///< per point
+    std::uint32_t top_ = 0;  ///< one past the largest shared target queued
+    /// A point's origin, padded to four floats: traceAs reads each with one load.
+    struct Origin {
+        float x, y, z, pad;
+    };
+    std::vector<Origin> origins_;            ///< per point
     std::vector<std::uint32_t> pointBegin_;  ///< point p's entries start there
     std::vector<std::uint8_t> blocked_;
     std::vector<std::uint32_t> order_, counts_;
