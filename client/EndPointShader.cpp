@@ -162,14 +162,22 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
         // there. Point lights (omni: a cosine of 1) are listed for addDirect itself.
         const LinkBuffer& links =
             linksOf(set.directLanes, set.direct.size(), origin, n, x.faceNormal, 0.0f);
-        for (std::size_t k = 0; k < links.size(); ++k) {
-            const LambertianLink link = links[k];
-            const Vpl& v = set.direct[link.vpl];
-            if (v.omni)
-                addDirect(v, link.vpl);
-            else
-                connect(link.vpl, link.w, link.d, v.power * link.g, glm::vec3(0.0f));
-        }
+        if (!set.directLanes.anyGeneral)  // no point lights: every link is connected alike
+            queue.addEach(links.size(), [&](std::size_t k) {
+                const LambertianLink link = links[k];
+                return ShadowQueue::Connection{link.vpl, link.w, link.d * (1.0f - kVplShadowShrink),
+                                               set.direct[link.vpl].power * link.g,
+                                               glm::vec3(0.0f)};
+            });
+        else
+            for (std::size_t k = 0; k < links.size(); ++k) {
+                const LambertianLink link = links[k];
+                const Vpl& v = set.direct[link.vpl];
+                if (v.omni)
+                    addDirect(v, link.vpl);
+                else
+                    connect(link.vpl, link.w, link.d, v.power * link.g, glm::vec3(0.0f));
+            }
     } else {
         for (std::size_t i = 0; i < set.direct.size(); ++i)
             addDirect(set.direct[i], std::uint32_t(i));
@@ -252,6 +260,15 @@ void EndPointShader::connectLambertian(const ShadingPoint& x, const LightingSet&
     const auto first = std::uint32_t(set.direct.size());
     const LinkBuffer& links = linksOf(set.vplChoice, set.indirect.size(), origin, x.brdf.normal,
                                       x.faceNormal, set.minDistance2);
+    if (!set.vplChoice.anyGeneral) {  // no glossy VPL: every link is connected alike
+        queue.addEach(links.size(), [&](std::size_t k) {
+            const LambertianLink link = links[k];
+            return ShadowQueue::Connection{first + link.vpl, link.w,
+                                           link.d * (1.0f - kVplShadowShrink),
+                                           set.indirect[link.vpl].power * link.g, glm::vec3(0.0f)};
+        });
+        return;
+    }
     for (std::size_t k = 0; k < links.size(); ++k) {
         const LambertianLink link = links[k];
         const Vpl& vpl = set.indirect[link.vpl];

@@ -39,6 +39,30 @@ class ShadowQueue {
         entries_[size_++] = {direction, tfar, irradiance, glossy, currentPoint_, target};
         top_ = std::max(top_, target + 1u);  // kOwnTarget + 1 wraps to 0: not a shared target
     }
+    /// A connection as add() takes it.
+    struct Connection {
+        std::uint32_t target;
+        glm::vec3 direction;
+        float tfar;
+        glm::vec3 irradiance, glossy;
+    };
+    /// `n` connections of the current point in a row, the k-th given by at(k): add()'s
+    /// effect, with the room made once and the queue's fields kept in registers (add() must
+    /// reload them after each entry it writes).
+    template <class At>
+    void addEach(std::size_t n, At&& at) {
+        if (size_ + n > entries_.size()) entries_.resize(std::max(2 * size_, size_ + n + 64));
+        Entry* out = entries_.data() + size_;
+        const std::uint32_t point = currentPoint_;
+        std::uint32_t top = top_;
+        for (std::size_t k = 0; k < n; ++k) {
+            const Connection c = at(k);
+            out[k] = {c.direction, c.tfar, c.irradiance, c.glossy, point, c.target};
+            top = std::max(top, c.target + 1u);
+        }
+        size_ += n;
+        top_ = top;
+    }
     /// Traces every queued ray, in packets of the scene's width grouped by target.
     void trace(const TraceableScene& scene, RayCounters& counters);
     /// The point's unblocked contributions, each added in the order queued, starting from zero.
