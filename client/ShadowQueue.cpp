@@ -13,7 +13,6 @@ namespace igi {
 
 void ShadowQueue::clear() {
     size_ = 0;
-    top_ = 0;
     origins_.clear();
     pointBegin_.clear();
 }
@@ -26,7 +25,9 @@ std::uint32_t ShadowQueue::beginPoint(glm::vec3 origin) {
 }
 
 void ShadowQueue::sortByTarget() {
-    const std::uint32_t top = top_;
+    // One past the largest shared target (kOwnTarget + 1 wraps to 0: not a shared target).
+    std::uint32_t top = 0;
+    for (std::size_t i = 0; i < size_; ++i) top = std::max(top, entries_[i].target + 1u);
     // Counting sort: bucket `top` holds the own targets, in the order queued.
     counts_.assign(std::size_t(top) + 2, 0);
     auto bucket = [top](std::uint32_t t) { return t == kOwnTarget ? top : t; };

@@ -37,7 +37,6 @@ class ShadowQueue {
              glm::vec3 glossy) {
         if (size_ == entries_.size()) entries_.resize(std::max<std::size_t>(64, 2 * size_));
         entries_[size_++] = {direction, tfar, irradiance, glossy, currentPoint_, target};
-        top_ = std::max(top_, target + 1u);  // kOwnTarget + 1 wraps to 0: not a shared target
     }
     /// A connection as add() takes it.
     struct Connection {
@@ -54,14 +53,11 @@ class ShadowQueue {
         if (size_ + n > entries_.size()) entries_.resize(std::max(2 * size_, size_ + n + 64));
         Entry* out = entries_.data() + size_;
         const std::uint32_t point = currentPoint_;
-        std::uint32_t top = top_;
         for (std::size_t k = 0; k < n; ++k) {
             const Connection c = at(k);
             out[k] = {c.direction, c.tfar, c.irradiance, c.glossy, point, c.target};
-            top = std::max(top, c.target + 1u);
         }
         size_ += n;
-        top_ = top;
     }
     /// Traces every queued ray, in packets of the scene's width grouped by target.
     void trace(const TraceableScene& scene, RayCounters& counters);
@@ -88,7 +84,6 @@ class ShadowQueue {
     std::vector<Entry> entries_;
     std::size_t size_ = 0;
     std::uint32_t currentPoint_ = 0;
-    std::uint32_t top_ = 0;  ///< one past the largest shared target queued
     /// A point's origin, padded to four floats: traceAs reads each with one load.
     struct Origin {
         float x, y, z, pad;

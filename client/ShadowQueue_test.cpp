@@ -28,6 +28,7 @@ struct Connection {
 // targets of their own, traced together in packets by target: each point's sums are those of
 // its rays traced one at a time and added in the order queued, bit for bit. Twice through one
 // queue, the second time with fewer targets than the first, as a thread's queue is reused.
+// Points queue their rays one at a time (add) or in one run (addEach), alternately.
 TEST(ShadowQueue, PointsTracedTogetherSumAsEachPointsRaysTracedAlone) {
     const Scene scene = testing::cornellBox(1.0f, true);
     EmbreeDevice device;
@@ -61,9 +62,18 @@ TEST(ShadowQueue, PointsTracedTogetherSumAsEachPointsRaysTracedAlone) {
                                        glm::length(end - origin) * 0.999f,
                                        glm::vec3(unit(random), unit(random), 1e-3f * unit(random)),
                                        glm::vec3(unit(random) * 1e5f, 0.0f, unit(random))};
-                    queue.add(c.target, c.direction, c.tfar, c.irradiance, c.glossy);
+                    // Every other point queues its rays in one run (addEach), the rest one by one.
+                    if (p % 2 == 0)
+                        queue.add(c.target, c.direction, c.tfar, c.irradiance, c.glossy);
                     connections.back().push_back(c);
                 }
+                const std::vector<Connection>& mine = connections.back();
+                if (p % 2 == 1)
+                    queue.addEach(mine.size(), [&](std::size_t k) {
+                        const Connection& c = mine[k];
+                        return ShadowQueue::Connection{c.target, c.direction, c.tfar, c.irradiance,
+                                                       c.glossy};
+                    });
             }
             RayCounters together, alone;
             queue.trace(traceable, together);
