@@ -27,14 +27,14 @@ std::uint32_t ShadowQueue::beginPoint(glm::vec3 origin) {
 void ShadowQueue::sortByTarget() {
     // One past the largest shared target (kOwnTarget + 1 wraps to 0: not a shared target).
     std::uint32_t top = 0;
-    for (std::size_t i = 0; i < size_; ++i) top = std::max(top, entries_[i].target + 1u);
+    for (std::size_t i = 0; i < size_; ++i) top = std::max(top, targets_[i] + 1u);
     // Counting sort: bucket `top` holds the own targets, in the order queued.
     counts_.assign(std::size_t(top) + 2, 0);
     auto bucket = [top](std::uint32_t t) { return t == kOwnTarget ? top : t; };
-    for (std::size_t i = 0; i < size_; ++i) ++counts_[bucket(entries_[i].target) + 1];
+    for (std::size_t i = 0; i < size_; ++i) ++counts_[bucket(targets_[i]) + 1];
     for (std::size_t b = 1; b < counts_.size(); ++b) counts_[b] += counts_[b - 1];
     order_.resize(size_);
-    for (std::uint32_t i = 0; i < size_; ++i) order_[counts_[bucket(entries_[i].target)]++] = i;
+    for (std::uint32_t i = 0; i < size_; ++i) order_[counts_[bucket(targets_[i])]++] = i;
 }
 
 namespace {

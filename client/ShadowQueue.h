@@ -35,8 +35,9 @@ class ShadowQueue {
     /// irradiance and glossy radiance it adds when unblocked.
     void add(std::uint32_t target, glm::vec3 direction, float tfar, glm::vec3 irradiance,
              glm::vec3 glossy) {
-        if (size_ == entries_.size()) entries_.resize(std::max<std::size_t>(64, 2 * size_));
-        entries_[size_++] = {direction, tfar, irradiance, glossy, currentPoint_, target};
+        if (size_ == entries_.size()) grow(std::max<std::size_t>(64, 2 * size_));
+        targets_[size_] = target;
+        entries_[size_++] = {direction, tfar, irradiance, glossy, currentPoint_};
     }
     /// A connection as add() takes it.
     struct Connection {
@@ -50,12 +51,14 @@ class ShadowQueue {
     /// reload them after each entry it writes).
     template <class At>
     void addEach(std::size_t n, At&& at) {
-        if (size_ + n > entries_.size()) entries_.resize(std::max(2 * size_, size_ + n + 64));
+        if (size_ + n > entries_.size()) grow(std::max(2 * size_, size_ + n + 64));
         Entry* out = entries_.data() + size_;
+        std::uint32_t* targets = targets_.data() + size_;
         const std::uint32_t point = currentPoint_;
         for (std::size_t k = 0; k < n; ++k) {
             const Connection c = at(k);
-            out[k] = {c.direction, c.tfar, c.irradiance, c.glossy, point, c.target};
+            out[k] = {c.direction, c.tfar, c.irradiance, c.glossy, point};
+            targets[k] = c.target;
         }
         size_ += n;
     }
@@ -72,8 +75,12 @@ class ShadowQueue {
         glm::vec3 direction;
         float tfar;
         glm::vec3 irradiance, glossy;
-        std::uint32_t point, target;
+        std::uint32_t point;
     };
+    void grow(std::size_t capacity) {
+        entries_.resize(capacity);
+        targets_.resize(capacity);
+    }
     /// Indices of the entries sorted by target (stable; own targets last): order_.
     void sortByTarget();
     template <int N>
@@ -82,6 +89,8 @@ class ShadowQueue {
     // Entries are kept in a vector that only grows: add() writes in place, without a
     // push_back's bookkeeping, and clear() keeps the memory.
     std::vector<Entry> entries_;
+    /// Each entry's target, apart: the sort reads them alone, three times.
+    std::vector<std::uint32_t> targets_;
     std::size_t size_ = 0;
     std::uint32_t currentPoint_ = 0;
     /// A point's origin, padded to four floats: traceAs reads each with one load.
