@@ -157,13 +157,23 @@ void TraceableScene::addMesh(const Mesh& mesh, RTCScene scene, const glm::mat4& 
     data.normalToWorld = glm::transpose(glm::inverse(glm::mat3(objectToWorld)));
     data.material = material;
     const auto id = std::uint32_t(meshes_.size());
+    meshes_.push_back(data);  // worldTriangle reads it
+    MeshData& added = meshes_.back();
+    added.faceNormals.resize(mesh.triangles.size());
+    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+        added.faceNormals[t] = faceNormalOf(worldTriangle(id, t));
     if (scene) {
         // Flat: the geometry's own scene has it already, under the same ID.
         if (layout_ == SceneLayout::Instanced)
             geometry_.attachInstance(top_, scene, data.objectToWorld, id);
         triangleCount_ += mesh.triangles.size();
     }
-    meshes_.push_back(data);
+}
+
+glm::vec3 TraceableScene::faceNormalOf(const WorldTriangle& t) {
+    const glm::vec3 ng = glm::cross(t.p1 - t.p0, t.p2 - t.p0);
+    const float len = glm::length(ng);
+    return len > 0 ? ng / len : glm::vec3(0, 0, 1);
 }
 
 bool TraceableScene::intersect(glm::vec3 origin, glm::vec3 direction, float tfar, SurfacePoint& hit,
@@ -293,10 +303,7 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
     const glm::vec3 pObject =
         w * mesh.positions[t.x] + u * mesh.positions[t.y] + v * mesh.positions[t.z];
     hit.position = transformPoint(m.objectToWorld, pObject);
-    const WorldTriangle tri = worldTriangle(meshIndex, prim);
-    glm::vec3 ng = glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
-    const float len = glm::length(ng);
-    ng = len > 0 ? ng / len : glm::vec3(0, 0, 1);
+    const glm::vec3 ng = m.faceNormals[prim];
     hit.geometricNormal = ng;
 
     hit.shadingNormal = ng;

@@ -122,7 +122,13 @@ class TraceableScene {
         glm::mat4 objectToWorld{1.0f};
         glm::mat3 normalToWorld{1.0f};
         int material = -1;  ///< every triangle's material, or -1: the mesh's own per triangle
+        /// Per triangle, the unit geometric normal in world space (0, 0, 1 for a degenerate
+        /// one), as fillSurfacePoint gives it: computed once rather than at every hit, from the
+        /// world-space vertices (three transforms, a square root and a division).
+        std::vector<glm::vec3> faceNormals;
     };
+    /// The unit geometric normal of a triangle from its world-space vertices.
+    static glm::vec3 faceNormalOf(const WorldTriangle& t);
 
     /// Adds a mesh's data (and in the instanced layout, its instance) as the next mesh index;
     /// `scene` is its object-space Embree scene, null for a mesh without triangles.
