@@ -66,7 +66,12 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
     // Per thread, kept between calls: no allocation per chunk once warm.
     thread_local std::vector<PixelPath> paths;
     thread_local ShadowQueue queue;
+    thread_local std::vector<float> px, py;
+    thread_local std::vector<glm::vec3> directions;
     paths.resize(std::size_t(count));
+    px.resize(std::size_t(count));
+    py.resize(std::size_t(count));
+    directions.resize(std::size_t(count));
     for (int i = 0; i < count; ++i) {
         PixelPath& p = paths[std::size_t(i)];
         // Reset field by field: a whole PixelPath{} would copy its three end points' storage.
@@ -75,10 +80,12 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
         p.primary = -1;
         p.nextNumber = 2;
         p.sampler = PixelSampler(settings_.seed, SampleStream::EyePath, pixels[i].index, frame);
-        p.direction = camera_.direction(float(pixels[i].x) + p.sampler.get(0),
-                                        float(pixels[i].y) + p.sampler.get(1));
+        px[std::size_t(i)] = float(pixels[i].x) + p.sampler.get(0);
+        py[std::size_t(i)] = float(pixels[i].y) + p.sampler.get(1);
         results[i] = PixelResult{};
     }
+    camera_.directions(px.data(), py.data(), count, directions.data());
+    for (int i = 0; i < count; ++i) paths[std::size_t(i)].direction = directions[std::size_t(i)];
     traceEyeRays(paths.data(), count, counters);
     // The rays that leave the first hits along mirror and glass lobes go in packets too; the
     // rest of each chain follows one ray at a time (its numbers come from the pixel's stream,
