@@ -63,6 +63,18 @@ const LinkBuffer& linksOf(const VplChoice& lanes, std::size_t count, glm::vec3 o
     return links;
 }
 
+/// Queues every link of `links` as a Lambertian connection to `vpls[link.vpl]` (target
+/// `first + link.vpl`): the scalar connection's arithmetic, for sets in which no link needs the
+/// general one (VplChoice::anyGeneral false).
+void queueLinks(const LinkBuffer& links, const std::vector<Vpl>& vpls, std::uint32_t first,
+                ShadowQueue& queue) {
+    queue.addEach(links.size(), [&](std::size_t k) {
+        const LambertianLink link = links[k];
+        return ShadowQueue::Connection{first + link.vpl, link.w, link.d * (1.0f - kVplShadowShrink),
+                                       vpls[link.vpl].power * link.g, glm::vec3(0.0f)};
+    });
+}
+
 }  // namespace
 
 EndPointShader::EndPointShader(const TraceableScene& scene, const Lights& lights,
@@ -163,12 +175,7 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
         const LinkBuffer& links =
             linksOf(set.directLanes, set.direct.size(), origin, n, x.faceNormal, 0.0f);
         if (!set.directLanes.anyGeneral)  // no point lights: every link is connected alike
-            queue.addEach(links.size(), [&](std::size_t k) {
-                const LambertianLink link = links[k];
-                return ShadowQueue::Connection{link.vpl, link.w, link.d * (1.0f - kVplShadowShrink),
-                                               set.direct[link.vpl].power * link.g,
-                                               glm::vec3(0.0f)};
-            });
+            queueLinks(links, set.direct, 0, queue);
         else
             for (std::size_t k = 0; k < links.size(); ++k) {
                 const LambertianLink link = links[k];
@@ -261,12 +268,7 @@ void EndPointShader::connectLambertian(const ShadingPoint& x, const LightingSet&
     const LinkBuffer& links = linksOf(set.vplChoice, set.indirect.size(), origin, x.brdf.normal,
                                       x.faceNormal, set.minDistance2);
     if (!set.vplChoice.anyGeneral) {  // no glossy VPL: every link is connected alike
-        queue.addEach(links.size(), [&](std::size_t k) {
-            const LambertianLink link = links[k];
-            return ShadowQueue::Connection{first + link.vpl, link.w,
-                                           link.d * (1.0f - kVplShadowShrink),
-                                           set.indirect[link.vpl].power * link.g, glm::vec3(0.0f)};
-        });
+        queueLinks(links, set.indirect, first, queue);
         return;
     }
     for (std::size_t k = 0; k < links.size(); ++k) {

@@ -39,36 +39,34 @@ void ShadowQueue::sortByTarget() {
 
 namespace {
 
-// Lanes lane .. lane + 3 of a packet's SoA rays from four entries (each its direction and tfar,
+// Four rows of four floats, turned into four columns written at a .. d (d may be null: the
+// column dropped): lanes lane .. lane + 3 of a packet's SoA fields.
+void storeColumns(const float* const row[4], float* a, float* b, float* c, float* d) {
+#if defined(__SSE2__)
+    __m128 r0 = _mm_loadu_ps(row[0]), r1 = _mm_loadu_ps(row[1]), r2 = _mm_loadu_ps(row[2]),
+           r3 = _mm_loadu_ps(row[3]);
+    _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+    _mm_store_ps(a, r0);
+    _mm_store_ps(b, r1);
+    _mm_store_ps(c, r2);
+    if (d) _mm_store_ps(d, r3);
+#else
+    for (int m = 0; m < 4; ++m) {
+        a[m] = row[m][0];
+        b[m] = row[m][1];
+        c[m] = row[m][2];
+        if (d) d[m] = row[m][3];
+    }
+#endif
+}
+
+// Lanes lane .. lane + 3 of a packet's rays from four entries (each its direction and tfar,
 // and its point's origin: four floats apiece), transposed four at a time rather than written
 // field by field.
 template <class Rays>
 void setFour(Rays& rays, int lane, const float* const ray[4], const float* const origin[4]) {
-#if defined(__SSE2__)
-    __m128 r0 = _mm_loadu_ps(ray[0]), r1 = _mm_loadu_ps(ray[1]), r2 = _mm_loadu_ps(ray[2]),
-           r3 = _mm_loadu_ps(ray[3]);
-    _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
-    _mm_store_ps(&rays.dir_x[lane], r0);
-    _mm_store_ps(&rays.dir_y[lane], r1);
-    _mm_store_ps(&rays.dir_z[lane], r2);
-    _mm_store_ps(&rays.tfar[lane], r3);
-    __m128 o0 = _mm_loadu_ps(origin[0]), o1 = _mm_loadu_ps(origin[1]), o2 = _mm_loadu_ps(origin[2]),
-           o3 = _mm_loadu_ps(origin[3]);
-    _MM_TRANSPOSE4_PS(o0, o1, o2, o3);
-    _mm_store_ps(&rays.org_x[lane], o0);
-    _mm_store_ps(&rays.org_y[lane], o1);
-    _mm_store_ps(&rays.org_z[lane], o2);
-#else
-    for (int m = 0; m < 4; ++m) {
-        rays.dir_x[lane + m] = ray[m][0];
-        rays.dir_y[lane + m] = ray[m][1];
-        rays.dir_z[lane + m] = ray[m][2];
-        rays.tfar[lane + m] = ray[m][3];
-        rays.org_x[lane + m] = origin[m][0];
-        rays.org_y[lane + m] = origin[m][1];
-        rays.org_z[lane + m] = origin[m][2];
-    }
-#endif
+    storeColumns(ray, &rays.dir_x[lane], &rays.dir_y[lane], &rays.dir_z[lane], &rays.tfar[lane]);
+    storeColumns(origin, &rays.org_x[lane], &rays.org_y[lane], &rays.org_z[lane], nullptr);
 }
 
 }  // namespace
