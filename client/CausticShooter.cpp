@@ -176,10 +176,7 @@ void CausticShooter::shootFromVpls(std::uint32_t frame, std::uint32_t setIndex,
         const float cosY = glm::dot(direction, v.normal);
         if (cosY <= 0) continue;
         glm::vec3 intensity = v.power;
-        if (v.glossy()) {
-            const float c = glm::dot(direction, v.mirror);
-            if (c > 0) intensity += v.glossyPower * std::pow(std::min(c, 1.0f), v.exponent);
-        }
+        if (v.glossy()) intensity += glossyIntensity(v, direction);
         const glm::vec3 power = intensity * (cosY * vplCount / (pdfDirection * float(count)));
         trace(v.position, direction, power, j, sampler, out, counters);
     }

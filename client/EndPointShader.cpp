@@ -46,11 +46,21 @@ std::optional<Link> linkTo(const Vpl& v, glm::vec3 origin, glm::vec3 n, glm::vec
     return Link{w, d, d2, cosX, cosY};
 }
 
-float maxSharpnessOf(const std::vector<Material>& materials) {
+float maxSharpnessOf(const std::vector<Material>& materials, const std::vector<Texture>& textures) {
     float s = 1.0f;
-    for (const Material& m : materials)
-        if (m.reflection == Reflection::Glossy && !m.glass && !isBlack(m.specular))
+    for (const Material& m : materials) {
+        if (m.glass) continue;
+        if (m.reflection == Reflection::Glossy && !isBlack(m.specular))
             s = std::max(s, 0.5f * (m.phongExponent + 2.0f));
+        // A GGX material whose factor is under the mirror threshold is a mirror at every texel
+        // (the map only scales it down); otherwise its smoothest GGX texel is its sharpest lobe.
+        if (m.reflection == Reflection::Ggx && m.roughness * m.roughness >= ggx::kMinAlpha) {
+            float roughness = std::clamp(m.roughness, 0.0f, 1.0f);
+            if (m.metallicRoughnessTexture >= 0)
+                roughness *= std::clamp(textures[m.metallicRoughnessTexture].minimum.y, 0.0f, 1.0f);
+            s = std::max(s, ggx::maxSharpness(std::max(roughness * roughness, ggx::kMinAlpha)));
+        }
+    }
     return s;
 }
 
@@ -84,7 +94,7 @@ EndPointShader::EndPointShader(const TraceableScene& scene, const Lights& lights
       directSamples_(std::max(0, settings.directSamples)),
       maxEyeDepth_(settings.maxEyeDepth),
       compensate_(settings.clampCompensation == ClampCompensation::KolligKeller),
-      maxSharpness_(maxSharpnessOf(scene.materials())) {}
+      maxSharpness_(maxSharpnessOf(scene.materials(), scene.textures())) {}
 
 ShadowQueue& EndPointShader::scratchQueue(int depth) {
     // One queue per depth and thread: a point's continuation shades the next point (one level
@@ -155,16 +165,15 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
         const std::optional<Link> link = linkTo(v, origin, n, x.faceNormal);
         if (!link) return;
         const auto [w, d, d2, cosX, cosY] = *link;
-        const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
-        const float r = residual ? residualWeight(residual, b.sharpness(cosAlpha)) : 1.0f;
+        const float r = residual ? residualWeight(residual, b.sharpness(w)) : 1.0f;
         if (!(r > 0)) return;
         const glm::vec3 e = v.power * (cosX * cosY / d2 * r);
         glm::vec3 g(0.0f);
         if (glossy) {
             float mis = 1.0f;
             if (misWithContinuation && !v.omni)
-                mis = powerHeuristic(lightSamples * v.areaPdf * d2 / cosY, b.pdf(w, x.mirror));
-            g = e * b.glossy(cosAlpha) * mis;
+                mis = powerHeuristic(lightSamples * v.areaPdf * d2 / cosY, b.pdf(w));
+            g = e * b.glossy(w) * mis;
         }
         connect(target, w, d, e, g);
     };
@@ -248,15 +257,14 @@ void EndPointShader::connectVpl(const ShadingPoint& x, const LightingSet& set, s
         return;
     }
     const auto [intensity, sharpnessY] = v.towards(w);
-    const float cosAlpha = glossy ? glm::dot(w, x.mirror) : 0.0f;
-    const float sharpnessX = glossy ? b.sharpness(cosAlpha) : b.diffuseShare;
+    const float sharpnessX = glossy ? b.sharpness(w) : b.diffuseShare;
     const float kept = keptFraction(d2, set.minDistance2, set.sharpnessBudget, sharpnessX,
                                     sharpnessY, set.boundShape);
     const float r = residualWeight(residual, sharpnessX);
     if (!(r > 0)) return;
     glm::vec3 e = intensity * (cosX * cosY / d2 * kept * r);
     if (scale != 1.0f) e *= scale;
-    const glm::vec3 g = glossy ? e * b.glossy(cosAlpha) : glm::vec3(0.0f);
+    const glm::vec3 g = glossy ? e * b.glossy(w) : glm::vec3(0.0f);
     connect(w, d, e, g);
 }
 
@@ -293,11 +301,10 @@ void EndPointShader::gatherPhotons(const ShadingPoint& x, const LightingSet& set
         grid->forEachNear(x.position, [&](const CausticPhoton& p) {
             if (glm::dot(p.direction, b.normal) >= 0) return;  // arrived on the other side
             const glm::vec3 wi = -p.direction;
-            const float cosAlpha = glm::dot(wi, x.mirror);
             const float weight =
-                density * (residual ? residualWeight(residual, b.sharpness(cosAlpha)) : 1.0f);
+                density * (residual ? residualWeight(residual, b.sharpness(wi)) : 1.0f);
             sums.irradiance += p.power * weight;
-            if (withGlossy) sums.glossy += p.power * b.glossy(cosAlpha) * weight;
+            if (withGlossy) sums.glossy += p.power * b.glossy(wi) * weight;
         });
     }
 }
@@ -317,17 +324,16 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
     const glm::vec2 u = random.next2();
     const float uLobe = glossy ? random.next() : 0.0f;
     const float uChain = glossy ? random.next() : 0.0f;
-    const glm::vec3 w = b.sample(u, uLobe, x.mirror);
+    const glm::vec3 w = b.sample(u, uLobe);
     const float cosX = glm::dot(w, b.normal);
     if (cosX <= 0 || glm::dot(w, x.faceNormal) <= 0) return;
-    const float pdf = b.pdf(w, x.mirror);
+    const float pdf = b.pdf(w);
     if (!(pdf > 0)) return;
-    const float cosAlpha = glm::dot(w, x.mirror);
-    const float sharpnessX = b.sharpness(cosAlpha);
+    const float sharpnessX = b.sharpness(w);
     const float r = residualWeight(residual, sharpnessX);
     if (!(r > 0)) return;
     const float scale = cosX / (pdf * traced) * r;  // radiance from w times this estimates E
-    const glm::vec3 glossyF = glossy ? b.glossy(cosAlpha) : glm::vec3(0.0f);
+    const glm::vec3 glossyF = glossy ? b.glossy(w) : glm::vec3(0.0f);
     const bool compensate = compensate_ && set.minDistance2 > 0 && set.indirectLight;
 
     // Without a glossy lobe only the compensation needs the ray, and it has nothing to add

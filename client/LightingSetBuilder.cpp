@@ -49,7 +49,13 @@ Vpl vplAt(const TraceableScene& scene, const SurfacePoint& hit, const Lobes& lob
     v.power = flux * b.kd * kInvPi;
     v.diffuseShare = b.diffuseShare;
     v.glossyShare = b.glossyShare;
-    if (b.hasGlossy()) {
+    if (b.hasGlossy() && b.model == GlossyModel::Ggx) {
+        v.ggx = true;
+        v.glossyPower = flux;
+        v.alpha = b.alpha;
+        v.f0 = b.f0;
+        v.incoming = lobes.wo;  // where the light came from
+    } else if (b.hasGlossy()) {
         v.glossyPower = flux * b.ks * ((b.exponent + 2.0f) * 0.5f * kInvPi);
         v.exponent = b.exponent;
         v.mirror = lobes.mirrorDirection;  // lobes.wo is where the light came from

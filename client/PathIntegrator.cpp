@@ -76,12 +76,12 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
             radiance += beta / pNonDelta *
                         directLight(hit, lobes, sampler.get(dim + 3),
                                     {sampler.get(dim + 4), sampler.get(dim + 5)}, counters);
-            direction = b.sample(u, sampler.get(dim + 7), lobes.mirrorDirection);
+            direction = b.sample(u, sampler.get(dim + 7));
             const float cosX = glm::dot(direction, b.normal);
             if (cosX <= 0 || glm::dot(direction, lobes.faceNormal) <= 0) break;
-            const float pdf = b.pdf(direction, lobes.mirrorDirection);
+            const float pdf = b.pdf(direction);
             if (!(pdf > 0)) break;
-            const glm::vec3 f = b.diffuse() + b.glossy(glm::dot(direction, lobes.mirrorDirection));
+            const glm::vec3 f = b.diffuse() + b.glossy(direction);
             beta *= f * (cosX / (pdf * pNonDelta));
             lastWasNonDelta = true;
             lastPdf = pdf;
@@ -122,10 +122,10 @@ glm::vec3 PathIntegrator::directLight(const SurfacePoint& hit, const Lobes& lobe
     const float distance = glm::length(target - shadowOrigin);
     if (scene_.occluded(shadowOrigin, w, distance * (1.0f - 1e-4f), counters))
         return glm::vec3(0.0f);
-    const glm::vec3 f = b.diffuse() + b.glossy(glm::dot(w, lobes.mirrorDirection));
+    const glm::vec3 f = b.diffuse() + b.glossy(w);
     if (ls.isPoint) return f * ls.emitted * (cosX / (d2 * ls.pdf));
     const float lightPdf = ls.pdf * d2 / cosY;  // solid angle
-    const float weight = powerHeuristic(lightPdf, b.pdf(w, lobes.mirrorDirection));
+    const float weight = powerHeuristic(lightPdf, b.pdf(w));
     return f * ls.emitted * (cosX * weight / lightPdf);
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "math/Color.h"
@@ -15,6 +16,35 @@ namespace igi {
 bool Lobes::hasDelta() const {
     return !isBlack(reflection) || !isBlack(transmission);
 }
+
+namespace {
+
+// glTF metallic-roughness (Material.h, Reflection::Ggx). The diffuse lobe is weighed by
+// 1 - f0 of the dielectric rather than the specification's 1 - F(v.h): a constant keeps it
+// Lambertian, so that its light is irradiance times kd as the master filters it, and the BRDF
+// reciprocal, as VPLs need (docs/MATERIALS.md).
+Lobes withGgx(const SurfacePoint& hit, Lobes l) {
+    const Material& m = *hit.material;
+    const float metallic = std::clamp(hit.metallic, 0.0f, 1.0f);
+    const float roughness = std::clamp(hit.roughness, 0.0f, 1.0f);
+    const float r = (m.ior - 1.0f) / (m.ior + 1.0f);
+    const float dielectricF0 = std::isfinite(r) ? std::min(r * r, 1.0f) : 0.04f;
+    const glm::vec3 base = hit.albedo;
+    const glm::vec3 f0 = glm::mix(glm::vec3(dielectricF0), base, metallic);
+    const glm::vec3 kd = base * ((1.0f - metallic) * (1.0f - dielectricF0));
+    const float alpha = roughness * roughness;
+    if (alpha < kMinGgxAlpha) {  // a mirror of Fresnel reflectance over the diffuse lobe
+        l.brdf = SurfaceBrdf::make(kd, glm::vec3(0.0f), 0.0f, l.normal);
+        l.brdf.wo = l.wo;
+        l.brdf.mirror = l.mirrorDirection;
+        l.reflection = ggx::schlick(f0, std::max(0.0f, glm::dot(l.wo, l.normal)));
+        return l;
+    }
+    l.brdf = SurfaceBrdf::makeGgx(kd, f0, alpha, l.normal, l.wo, l.mirrorDirection);
+    return l;
+}
+
+}  // namespace
 
 Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
     Lobes l;
@@ -37,9 +67,12 @@ Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
         }
         return l;
     }
+    if (m.reflection == Reflection::Ggx) return withGgx(hit, std::move(l));
     const bool glossy = m.reflection == Reflection::Glossy && m.phongExponent >= 0;
     l.brdf = SurfaceBrdf::make(hit.albedo, glossy ? m.specular : glm::vec3(0.0f), m.phongExponent,
                                l.normal);
+    l.brdf.wo = wo;
+    l.brdf.mirror = l.mirrorDirection;
     if (m.reflection == Reflection::Mirror) l.reflection = m.specular;
     return l;
 }
@@ -136,6 +169,16 @@ bool sampleLobe(const Lobes& l, Lobe lobe, glm::vec2 u, glm::vec3& direction, gl
             weight = l.brdf.kd;
             return glm::dot(direction, l.normal) > 0 && glm::dot(direction, l.faceNormal) > 0;
         case Lobe::Glossy: {
+            if (l.brdf.model == GlossyModel::Ggx) {
+                // By visible normals: f cos / pdf is F G2 / G1(wo), at most F.
+                direction = ggx::sample(l.brdf.alpha, l.normal, l.wo, u);
+                const float cosTheta = glm::dot(direction, l.normal);
+                if (cosTheta <= 0 || glm::dot(direction, l.faceNormal) <= 0) return false;
+                const float pdf = ggx::pdf(l.brdf.alpha, l.normal, direction, l.wo);
+                if (!(pdf > 0)) return false;
+                weight = l.brdf.glossy(direction) * (cosTheta / pdf);
+                return isFinite(weight);
+            }
             // Normalized Phong: f = Ks (n + 2) / (2 pi) cos^n(alpha), sampled with pdf
             // (n + 1) / (2 pi) cos^n(alpha) about the mirror direction, so f cos / pdf is below.
             direction = Frame(l.mirrorDirection).toWorld(squareToPhongLobe(u, l.brdf.exponent));

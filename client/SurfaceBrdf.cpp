@@ -4,8 +4,9 @@
 
 namespace igi {
 
-glm::vec3 SurfaceBrdf::sample(glm::vec2 u, float uLobe, glm::vec3 mirror) const {
-    if (uLobe < diffuseShare) return Frame(normal).toWorld(squareToCosineHemisphere(u));
+glm::vec3 SurfaceBrdf::sample(glm::vec2 u, float uLobe) const {
+    if (uLobe < sampleDiffuse) return Frame(normal).toWorld(squareToCosineHemisphere(u));
+    if (model == GlossyModel::Ggx) return ggx::sample(alpha, normal, wo, u);
     return Frame(mirror).toWorld(squareToPhongLobe(u, exponent));
 }
 

@@ -48,10 +48,10 @@ TEST_P(Lobes, DensityIntegratesToOne) {
     const float n = GetParam();
     for (const float viewCos : {1.0f, 0.5f, 0.05f}) {
         const glm::vec3 wo(std::sqrt(1 - viewCos * viewCos), 0.0f, viewCos);
-        for (const SurfaceBrdf& b : {brdf(0.0f, 0.5f, n), brdf(0.6f, 0.3f, n)}) {
-            const glm::vec3 mirror = reflect(wo, b.normal);
-            const double total =
-                integrateOverSphere([&](glm::vec3 w) { return double(b.pdf(w, mirror)); });
+        for (SurfaceBrdf b : {brdf(0.0f, 0.5f, n), brdf(0.6f, 0.3f, n)}) {
+            b.wo = wo;
+            b.mirror = reflect(wo, b.normal);
+            const double total = integrateOverSphere([&](glm::vec3 w) { return double(b.pdf(w)); });
             EXPECT_NEAR(total, 1.0, 2e-3) << "n " << n << ", cos " << viewCos;
         }
     }
@@ -61,9 +61,11 @@ TEST_P(Lobes, DensityIntegratesToOne) {
 // g, for a g that weighs the lobe's peak and its flanks differently.
 TEST_P(Lobes, DensityMatchesTheSampler) {
     const float n = GetParam();
-    const SurfaceBrdf b = brdf(0.5f, 0.4f, n);
+    SurfaceBrdf b = brdf(0.5f, 0.4f, n);
     const glm::vec3 wo = glm::normalize(glm::vec3(0.6f, 0.1f, 0.8f));
     const glm::vec3 mirror = reflect(wo, b.normal);
+    b.wo = wo;
+    b.mirror = mirror;
     auto g = [&](glm::vec3 w) {
         return double(std::max(0.0f, w.z)) * (1.0 + 3.0 * double(w.x) * double(w.x)) +
                double(b.lobe(glm::dot(w, mirror)));
@@ -74,8 +76,8 @@ TEST_P(Lobes, DensityMatchesTheSampler) {
     const int samples = 400000;
     double sum = 0;
     for (int i = 0; i < samples; ++i) {
-        const glm::vec3 w = b.sample({u(rng), u(rng)}, u(rng), mirror);
-        sum += g(w) / double(b.pdf(w, mirror));
+        const glm::vec3 w = b.sample({u(rng), u(rng)}, u(rng));
+        sum += g(w) / double(b.pdf(w));
     }
     EXPECT_NEAR(sum / samples / exact, 1.0, 0.01) << "n " << n;
 }
@@ -101,12 +103,11 @@ TEST_P(Lobes, GlossyWeightIsBrdfTimesCosineOverDensityAndConservesEnergy) {
         if (!sampleLobe(l, Lobe::Glossy, {u(rng), u(rng)}, w, weight)) continue;
         const float cosAlpha = glm::dot(w, l.mirrorDirection);
         const float phongPdf = (n + 1.0f) / (2.0f * kPi) * std::pow(cosAlpha, n);
-        const glm::vec3 expected = l.brdf.glossy(cosAlpha) * (w.z / phongPdf);
+        const glm::vec3 expected = l.brdf.glossy(w) * (w.z / phongPdf);
         ASSERT_NEAR(weight.x, expected.x, 1e-4f * std::max(1.0f, expected.x));
     }
-    const double albedo = integrateOverSphere([&](glm::vec3 w) {
-        return w.z > 0 ? double(l.brdf.glossy(glm::dot(w, l.mirrorDirection)).x) * w.z : 0.0;
-    });
+    const double albedo = integrateOverSphere(
+        [&](glm::vec3 w) { return w.z > 0 ? double(l.brdf.glossy(w).x) * w.z : 0.0; });
     EXPECT_LE(albedo, 0.7 * 1.001);
     EXPECT_GT(albedo, 0.7 * 0.8);
 }
@@ -116,10 +117,18 @@ INSTANTIATE_TEST_SUITE_P(Exponents, Lobes, ::testing::Values(1.0f, 10.0f, 40.0f,
 // The sharpness is pi times the BRDF normalized to unit albedo: 1 on a Lambertian surface, and
 // (n + 2) / 2 in the peak of a pure Phong lobe.
 TEST(SurfaceBrdf, SharpnessOfLambertAndPhong) {
-    EXPECT_FLOAT_EQ(brdf(0.7f, 0.0f, 0.0f).sharpness(0.3f), 1.0f);
-    EXPECT_FLOAT_EQ(brdf(0.0f, 0.5f, 40.0f).maxSharpness(), 21.0f);
-    EXPECT_FLOAT_EQ(brdf(0.0f, 0.5f, 40.0f).sharpness(1.0f), 21.0f);
-    EXPECT_FLOAT_EQ(brdf(0.5f, 0.5f, 40.0f).sharpness(0.0f), 0.5f);
+    // Seen straight on: the mirror direction is the normal, and cos(alpha) is w.z.
+    auto seen = [](SurfaceBrdf b) {
+        b.wo = b.mirror = b.normal;
+        return b;
+    };
+    auto at = [](float cosAlpha) {
+        return glm::vec3(std::sqrt(1 - cosAlpha * cosAlpha), 0.0f, cosAlpha);
+    };
+    EXPECT_FLOAT_EQ(seen(brdf(0.7f, 0.0f, 0.0f)).sharpness(at(0.3f)), 1.0f);
+    EXPECT_FLOAT_EQ(seen(brdf(0.0f, 0.5f, 40.0f)).maxSharpness(), 21.0f);
+    EXPECT_FLOAT_EQ(seen(brdf(0.0f, 0.5f, 40.0f)).sharpness(at(1.0f)), 21.0f);
+    EXPECT_FLOAT_EQ(seen(brdf(0.5f, 0.5f, 40.0f)).sharpness(at(0.0f)), 0.5f);
 }
 
 // The power heuristic's weights of two strategies sum to one, and a strategy that cannot

@@ -16,7 +16,9 @@ struct SurfacePoint {
     glm::vec3 geometricNormal{0.0f};  ///< unit, on the counter-clockwise (front) side
     glm::vec3 shadingNormal{0.0f};    ///< unit, interpolated, same side as geometricNormal
     glm::vec2 uv{0.0f};
-    glm::vec3 albedo{0.0f};  ///< Lambertian albedo: Kd times the texture
+    glm::vec3 albedo{0.0f};  ///< Lambertian albedo: Kd times the texture (GGX: the base colour)
+    float roughness = 1.0f;  ///< Reflection::Ggx: the factor times the texture's green
+    float metallic = 0.0f;   ///< Reflection::Ggx: the factor times the texture's blue
     const Material* material = nullptr;
     std::uint32_t mesh = 0;
     std::uint32_t triangle = 0;

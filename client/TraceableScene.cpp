@@ -324,6 +324,15 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
     hit.albedo = hit.material->diffuse;
     if (hit.material->diffuseTexture >= 0)
         hit.albedo *= (*textures_)[hit.material->diffuseTexture].sample(hit.uv);
+    if (hit.material->reflection == Reflection::Ggx) {
+        hit.roughness = hit.material->roughness;
+        hit.metallic = hit.material->metallic;
+        if (hit.material->metallicRoughnessTexture >= 0) {
+            const glm::vec3 t = (*textures_)[hit.material->metallicRoughnessTexture].sample(hit.uv);
+            hit.roughness *= t.y;
+            hit.metallic *= t.z;
+        }
+    }
 }
 
 std::vector<TraceableScene::WorldTriangle> TraceableScene::trianglesWhere(

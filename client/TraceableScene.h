@@ -89,6 +89,8 @@ class TraceableScene {
     std::vector<WorldTriangle> specularTriangles() const;
 
     const std::vector<Material>& materials() const { return materials_; }
+    /// The scene's decoded textures (Material's texture indices point here).
+    const std::vector<Texture>& textures() const { return *textures_; }
     const SceneGeometry& geometry() const { return geometry_; }
     /// The unit square onto a quad light: x along edge1, y along edge2, z along its normal.
     static glm::mat4 quadLightMatrix(const QuadLight& q);

@@ -6,6 +6,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "Ggx.h"
+
 namespace igi {
 
 /// A virtual point light: a point on a light source (a light sample) or a non-delta vertex of a
@@ -17,7 +19,9 @@ namespace igi {
 /// point at distance d whose normal makes the angle theta_x with -w receives that times
 /// cos(theta_x) / d^2. For an indirect VPL `power` is the flux that arrived times kd / pi and
 /// glossyPower that flux times the Phong lobe's ks (n + 2) / (2 pi): the VPL carries its
-/// surface's BRDF, evaluated toward whatever it lights.
+/// surface's BRDF, evaluated toward whatever it lights. On a GGX surface (`ggx`) glossyPower is
+/// the flux that arrived from `incoming`, and the lobe's factor is the GGX BRDF f(incoming, -w)
+/// (client/Ggx.h) instead of the Phong lobe.
 struct Vpl {
     glm::vec3 position{0.0f};  ///< already moved off its surface: shadow rays end here
     glm::vec3 normal{0.0f};
@@ -28,6 +32,11 @@ struct Vpl {
     glm::vec3 glossyPower{0.0f};
     float exponent = 0;
     glm::vec3 mirror{0.0f};  ///< the direction the light came from, mirrored about `normal`
+    // Indirect VPLs on GGX surfaces.
+    bool ggx = false;
+    float alpha = 0;
+    glm::vec3 f0{0.0f};
+    glm::vec3 incoming{0.0f};  ///< the direction the light came from
     /// Its surface's SurfaceBrdf::diffuseShare and glossyShare, for the connection bound.
     float diffuseShare = 1;
     float glossyShare = 0;
@@ -48,7 +57,10 @@ struct Vpl {
     };
     Emission towards(glm::vec3 w) const {
         Emission e{power, diffuseShare};
-        if (glossy()) {
+        if (glossy() && ggx) {
+            e.intensity += glossyPower * ggx::evaluate(alpha, f0, normal, incoming, -w);
+            e.sharpness += glossyShare * ggx::sharpness(alpha, normal, incoming, -w);
+        } else if (glossy()) {
             const float c = -glm::dot(w, mirror);
             const float lobe = c > 0 ? std::pow(std::min(c, 1.0f), exponent) : 0.0f;
             e.intensity += glossyPower * lobe;
@@ -57,6 +69,14 @@ struct Vpl {
         return e;
     }
 };
+
+/// The glossy lobe's intensity (its cosine left out) in the unit direction `out` leaving v.
+inline glm::vec3 glossyIntensity(const Vpl& v, glm::vec3 out) {
+    if (!v.glossy()) return glm::vec3(0.0f);
+    if (v.ggx) return v.glossyPower * ggx::evaluate(v.alpha, v.f0, v.normal, v.incoming, out);
+    const float c = glm::dot(out, v.mirror);
+    return c > 0 ? v.glossyPower * std::pow(std::min(c, 1.0f), v.exponent) : glm::vec3(0.0f);
+}
 
 /// Shadow rays toward a VPL stop this fraction of the distance short of it: it sits on a
 /// surface of its own.

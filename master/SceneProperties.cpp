@@ -88,11 +88,13 @@ void readScale(const JsonNode& node, Transform& t) {
 }
 
 void readMaterialType(const JsonNode& node, Material& m) {
-    const std::string type = node.choice({"diffuse", "glossy", "mirror", "glass"});
+    const std::string type =
+        node.choice({"diffuse", "glossy", "mirror", "glass", "metallic_roughness"});
     m.glass = type == "glass";
-    m.reflection = type == "glossy"   ? Reflection::Glossy
-                   : type == "mirror" ? Reflection::Mirror
-                                      : Reflection::None;
+    m.reflection = type == "glossy"               ? Reflection::Glossy
+                   : type == "mirror"             ? Reflection::Mirror
+                   : type == "metallic_roughness" ? Reflection::Ggx
+                                                  : Reflection::None;
 }
 
 // The type is two fields that change together.
@@ -220,6 +222,11 @@ const PropertyTable<Material>& propertyTable<Material>() {
             // Radiance emitted from the front side.
             {"emission", false, [](const JsonNode& n, M& m) { m.emission = n.rgb(kNonNegative); },
              linear<M, &M::emission>},
+            // glTF metallic-roughness (type metallic_roughness): times the material's map.
+            {"roughness", false, [](const JsonNode& n, M& m) { m.roughness = n.real(kFraction); },
+             linear<M, &M::roughness>},
+            {"metallic", false, [](const JsonNode& n, M& m) { m.metallic = n.real(kFraction); },
+             linear<M, &M::metallic>},
         },
         materialProblem};
     return table;

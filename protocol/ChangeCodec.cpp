@@ -15,7 +15,7 @@ static_assert(sizeof(PointLight) == sizeof(std::string) + 32,
               "PointLight changed: update ChangeCodec.cpp");
 static_assert(sizeof(QuadLight) == sizeof(std::string) + 56,
               "QuadLight changed: update ChangeCodec.cpp");
-static_assert(sizeof(Material) == sizeof(std::string) + 64,
+static_assert(sizeof(Material) == sizeof(std::string) + 80,
               "Material changed: update ChangeCodec.cpp");
 static_assert(std::variant_size_v<SceneChange> == 5,
               "a new kind of SceneChange needs a tag in ChangeCodec.cpp");
@@ -75,6 +75,8 @@ void write(ByteWriter& out, const MaterialChange& c) {
     out.f32(c.value.ior);
     writeVec3(out, c.value.transmittance);
     writeVec3(out, c.value.emission);
+    out.f32(c.value.roughness);
+    out.f32(c.value.metallic);
 }
 
 // ---- reading ----
@@ -98,6 +100,13 @@ class ChangeFields {
     float positive(const std::string& field) {
         const float v = finite(field);
         if (!(v > 0.0f)) fail(field + " is " + std::to_string(v) + ", expected > 0");
+        return v;
+    }
+
+    float fraction(const std::string& field) {
+        const float v = finite(field);
+        if (!(v >= 0.0f && v <= 1.0f))
+            fail(field + " is " + std::to_string(v) + ", expected in [0, 1]");
         return v;
     }
 
@@ -138,9 +147,9 @@ class ChangeFields {
 
     Reflection reflection() {
         const std::uint8_t v = in_.u8();
-        if (v > static_cast<std::uint8_t>(Reflection::Mirror))
-            fail("reflection is " + std::to_string(v) + ", expected 0 (none), 1 (glossy) or " +
-                 "2 (mirror)");
+        if (v > static_cast<std::uint8_t>(Reflection::Ggx))
+            fail("reflection is " + std::to_string(v) + ", expected 0 (none), 1 (glossy), " +
+                 "2 (mirror) or 3 (ggx)");
         return static_cast<Reflection>(v);
     }
 
@@ -206,6 +215,8 @@ MaterialChange readMaterialChange(ChangeFields& f) {
     c.value.ior = f.positive("ior");
     c.value.transmittance = f.colour("transmittance");
     c.value.emission = f.colour("emission");
+    c.value.roughness = f.fraction("roughness");
+    c.value.metallic = f.fraction("metallic");
     return c;
 }
 

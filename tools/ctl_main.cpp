@@ -131,6 +131,8 @@ int main(int argc, char** argv) {
                           {"--ior", "ior", 1},
                           {"--transmittance", "transmittance", 3},
                           {"--emission", "emission", 3},
+                          {"--roughness", "roughness", 1},
+                          {"--metallic", "metallic", 1},
                           {"--type", "type", 0}});
     auto* status =
         app.add_subcommand("status", "frames done, epoch, accumulated frames, clients, fps");

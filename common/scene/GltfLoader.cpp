@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 
 #include <spdlog/spdlog.h>
 #include <tiny_gltf.h>
@@ -217,6 +218,67 @@ std::string extensionForMime(const std::string& mime) {
     return ".png";
 }
 
+// ---- What the file uses that igi does not model -------------------------------------------
+
+// Extensions whose content igi reads (KHR_lights_punctual's spot and directional lights and
+// KHR_materials_transmission's partial transmission are approximated, with warnings of their
+// own). KHR_mesh_quantization's attribute types are read by AccessorReader, which refuses the
+// ones it cannot read by name.
+bool modelledExtension(const std::string& name) {
+    static const std::set<std::string> kModelled = {
+        "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_transmission",
+        "KHR_lights_punctual", "KHR_mesh_quantization"};
+    return kModelled.count(name) > 0;
+}
+
+std::string joined(const std::set<std::string>& names) {
+    std::string out;
+    for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+    return out;
+}
+
+// A required extension that is not modelled is an error (the file says it cannot be shown
+// without it); a used one, and every material feature igi does not render, is named in one
+// warning per file, never dropped silently.
+void checkGltfFeatures(const std::string& path, const tinygltf::Model& model) {
+    std::set<std::string> required;
+    for (const std::string& e : model.extensionsRequired)
+        if (!modelledExtension(e)) required.insert(e);
+    if (!required.empty())
+        throw SceneError::atPath(path, "/extensionsRequired",
+                                 "requires " + joined(required) + ", which igi does not support");
+    std::set<std::string> used;
+    for (const std::string& e : model.extensionsUsed)
+        if (!modelledExtension(e)) used.insert(e);
+    if (!used.empty())
+        spdlog::warn("{}: extensions not modelled, rendered without them: {}", path, joined(used));
+    std::set<std::string> ignored;
+    for (const tinygltf::Material& m : model.materials) {
+        if (m.normalTexture.index >= 0) ignored.insert("normalTexture");
+        if (m.occlusionTexture.index >= 0)
+            ignored.insert(
+                "occlusionTexture (ambient occlusion is for rasterizers: a path tracer "
+                "computes it)");
+        if (m.emissiveTexture.index >= 0)
+            ignored.insert("emissiveTexture (emission is its mean colour per material)");
+        if (m.alphaMode == "MASK" || m.alphaMode == "BLEND")
+            ignored.insert("alphaMode " + m.alphaMode + " (rendered opaque)");
+        const auto& pbr = m.pbrMetallicRoughness;
+        for (const tinygltf::TextureInfo* t :
+             {&pbr.baseColorTexture, &pbr.metallicRoughnessTexture, &m.emissiveTexture}) {
+            if (t->index >= 0 && t->texCoord != 0) ignored.insert("texCoord other than 0");
+            if (t->index >= 0 && t->extensions.count("KHR_texture_transform"))
+                ignored.insert("KHR_texture_transform");
+        }
+    }
+    for (const tinygltf::Mesh& mesh : model.meshes)
+        for (const tinygltf::Primitive& p : mesh.primitives)
+            if (p.attributes.count("COLOR_0")) ignored.insert("COLOR_0 vertex colours");
+    if (!ignored.empty())
+        spdlog::warn("{}: material features not modelled, rendered without them: {}", path,
+                     joined(ignored));
+}
+
 // ---- Materials ----------------------------------------------------------------------------
 
 class GltfMaterials {
@@ -250,14 +312,20 @@ class GltfMaterials {
             m.glass = true;
             const double ior = extensionNumber(gm.extensions, "KHR_materials_ior", "ior", 1.5);
             m.ior = ior > 0.0 ? static_cast<float>(ior) : 1.5f;
-        } else if (pbr.metallicFactor > 0.5 && pbr.roughnessFactor < 0.1) {
-            m.reflection = Reflection::Mirror;
-            m.specular = glm::min(baseColor, 1.0f);
-            m.diffuse = glm::vec3(0.0f);
         } else {
+            // Metallic-roughness (the specification's Appendix B). Without a
+            // pbrMetallicRoughness both factors default to 1: a rough white metal.
+            m.reflection = Reflection::Ggx;
             m.diffuse = baseColor;
             if (pbr.baseColorTexture.index >= 0)
                 m.diffuseTexture = colourTexture(pbr.baseColorTexture.index);
+            m.roughness = static_cast<float>(std::clamp(pbr.roughnessFactor, 0.0, 1.0));
+            m.metallic = static_cast<float>(std::clamp(pbr.metallicFactor, 0.0, 1.0));
+            if (pbr.metallicRoughnessTexture.index >= 0)
+                m.metallicRoughnessTexture =
+                    dataTexture(pbr.metallicRoughnessTexture.index, "metallicRoughnessTexture");
+            const double ior = extensionNumber(gm.extensions, "KHR_materials_ior", "ior", 1.5);
+            m.ior = ior >= 1.0 && std::isfinite(ior) ? static_cast<float>(ior) : 1.5f;
         }
         conserveEnergy(m, path_ + ": material '" + m.name + "'");
         return m;
@@ -309,6 +377,15 @@ class GltfMaterials {
         const auto [name, key] = imageNameAndKey(image);
         const auto& bytes = model_.images[image].image;
         return assets_.textureBytes(key, name, std::string(bytes.begin(), bytes.end()));
+    }
+
+    // A texture of values rather than colours: decoded without the sRGB curve.
+    int dataTexture(int textureIndex, const std::string& what) {
+        const int image = imageOf(textureIndex, what);
+        const auto [name, key] = imageNameAndKey(image);
+        const auto& bytes = model_.images[image].image;
+        return assets_.textureBytes(key, name, std::string(bytes.begin(), bytes.end()),
+                                    TextureEncoding::Data);
     }
 
     glm::vec3 textureAverage(int textureIndex) {
@@ -772,6 +849,7 @@ class GltfFlattener {
 void loadGltf(const std::string& path, SceneAssets& assets, Mesh& mesh,
               std::vector<PointLight>& lights) {
     const tinygltf::Model model = parseGltf(path, assets);
+    checkGltfFeatures(path, model);
     const std::uint32_t base = GltfMaterials(path, model, assets).appendAll();
     GltfFlattener(path, model, base, assets, mesh, lights).run();
     spdlog::debug("{}: {} triangles, {} materials, {} lights", path, mesh.triangles.size(),

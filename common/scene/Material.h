@@ -12,7 +12,17 @@ enum class Reflection : std::uint8_t {
     None,    ///< purely diffuse
     Glossy,  ///< a Phong lobe of weight `specular` and exponent `phongExponent`
     Mirror,  ///< perfect mirror of reflectance `specular`
+    /// glTF 2.0 metallic-roughness (its Appendix B): a GGX lobe of alpha = roughness^2 with
+    /// Schlick Fresnel of f0 = mix(((ior - 1) / (ior + 1))^2, base colour, metallic), over a
+    /// Lambertian lobe of the base colour times (1 - metallic)(1 - f0 of the dielectric). The
+    /// base colour is `diffuse` times its texture; roughness and metallic are the factors times
+    /// the green and blue of `metallicRoughnessTexture`.
+    Ggx,
 };
+
+/// Below this alpha = roughness^2 a GGX lobe is rendered as a mirror: D and V lose every bit
+/// of precision in float, and no sampler finds so sharp a peak by evaluation.
+constexpr float kMinGgxAlpha = 1e-3f;
 
 /// A surface material as plain data. The renderer interprets it as up to three BSDF
 /// components: Lambertian (`diffuse`), specular reflection (`reflection`) and, for glass, a
@@ -28,13 +38,19 @@ struct Material {
     float ior = 1.5f;               ///< Ni, index of refraction of glass
     glm::vec3 transmittance{1.0f};  ///< tint of light refracted through glass
     glm::vec3 emission{0.0f};       ///< Ke: radiance emitted on the front (counter-clockwise) side
+    float roughness = 1.0f;         ///< Reflection::Ggx: perceptual roughness in [0, 1]
+    float metallic = 0.0f;          ///< Reflection::Ggx: in [0, 1]
+    int metallicRoughnessTexture = -1;  ///< linear: green scales roughness, blue metallic
 
     bool operator==(const Material&) const = default;
 
     bool isEmissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
     /// Mirrors and glass: surfaces on which no diffuse VPL is stored and at which caustic
     /// photons are aimed.
-    bool isSpecular() const { return glass || reflection == Reflection::Mirror; }
+    bool isSpecular() const {
+        return glass || reflection == Reflection::Mirror ||
+               (reflection == Reflection::Ggx && roughness * roughness < kMinGgxAlpha);
+    }
 };
 
 }  // namespace igi

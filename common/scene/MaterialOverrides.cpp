@@ -11,11 +11,13 @@ namespace igi {
 namespace {
 
 void applyType(const JsonNode& node, Material& m) {
-    const std::string type = node.choice({"diffuse", "glossy", "mirror", "glass"});
+    const std::string type =
+        node.choice({"diffuse", "glossy", "mirror", "glass", "metallic_roughness"});
     m.glass = type == "glass";
-    m.reflection = type == "glossy"   ? Reflection::Glossy
-                   : type == "mirror" ? Reflection::Mirror
-                                      : Reflection::None;
+    m.reflection = type == "glossy"               ? Reflection::Glossy
+                   : type == "mirror"             ? Reflection::Mirror
+                   : type == "metallic_roughness" ? Reflection::Ggx
+                                                  : Reflection::None;
 }
 
 void apply(const JsonNode& node, const std::optional<int>& texture, Material& m) {
@@ -28,6 +30,8 @@ void apply(const JsonNode& node, const std::optional<int>& texture, Material& m)
     if (auto v = node.find("transmittance")) m.transmittance = v->rgb(NumberRange::closed(0, 1));
     // Radiance emitted from the front (counter-clockwise) side.
     if (auto v = node.find("emission")) m.emission = v->rgb(NumberRange::atLeast(0));
+    if (auto v = node.find("roughness")) m.roughness = v->real(NumberRange::closed(0, 1));
+    if (auto v = node.find("metallic")) m.metallic = v->real(NumberRange::closed(0, 1));
     if (texture) m.diffuseTexture = *texture;
 }
 
@@ -56,7 +60,7 @@ void applyMaterialOverrides(const JsonNode& node, SceneAssets& assets) {
     for (std::size_t i = 0; i < materials.size(); ++i) byName.emplace(materials[i].name, i);
     for (const auto& [name, value] : node.members()) {
         value.checkKeys({"type", "diffuse", "specular", "phong_exponent", "ior", "transmittance",
-                         "emission", "texture"});
+                         "emission", "roughness", "metallic", "texture"});
         const auto [first, last] = byName.equal_range(name);
         if (first == last) value.fail("no loaded mesh has a material named '" + name + "'");
         const std::optional<int> texture = overrideTexture(value, assets);

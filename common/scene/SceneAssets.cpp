@@ -28,10 +28,12 @@ std::optional<int> SceneAssets::textureFile(const std::string& path) {
 }
 
 int SceneAssets::textureBytes(const std::string& key, const std::string& name,
-                              const std::string& bytes) {
-    auto cached = byKey_.find(key);
+                              const std::string& bytes, TextureEncoding encoding) {
+    // One image may be both a colour and data (rarely, but a file may say so): two decodes.
+    const std::string k = encoding == TextureEncoding::Data ? key + "#data" : key;
+    auto cached = byKey_.find(k);
     if (cached != byKey_.end()) return cached->second;
-    return add(key, name, bytes);
+    return add(k, name, bytes, encoding);
 }
 
 void SceneAssets::checkMaterialCount(std::size_t count, const std::string& file) const {
@@ -43,9 +45,10 @@ void SceneAssets::checkMaterialCount(std::size_t count, const std::string& file)
                                        std::to_string(have) + " already)");
 }
 
-int SceneAssets::add(const std::string& key, const std::string& name, const std::string& bytes) {
+int SceneAssets::add(const std::string& key, const std::string& name, const std::string& bytes,
+                     TextureEncoding encoding) {
     TextureLimits textureLimits{limits_.maxTexturePixels, &texturePixels_};
-    Texture texture = decodeTexture(name, bytes, textureLimits);
+    Texture texture = decodeTexture(name, bytes, textureLimits, encoding);
     const int index = static_cast<int>(scene_.textures.size());
     scene_.textures.push_back(std::move(texture));
     byKey_[key] = index;

@@ -12,6 +12,7 @@
 #include "scene/FileSource.h"
 #include "scene/Scene.h"
 #include "scene/SceneLimits.h"
+#include "scene/TextureLoader.h"
 
 namespace igi {
 
@@ -29,7 +30,8 @@ class SceneAssets {
 
     /// Index of a texture decoded from bytes already in memory (glTF images), cached under
     /// `key`; `name` picks the decoder by its extension.
-    int textureBytes(const std::string& key, const std::string& name, const std::string& bytes);
+    int textureBytes(const std::string& key, const std::string& name, const std::string& bytes,
+                     TextureEncoding encoding = TextureEncoding::Colour);
 
     /// The scene's triangles and vertices so far: a loader checks fits() and add()s before it
     /// allocates for a file or a primitive.
@@ -40,7 +42,8 @@ class SceneAssets {
     void checkMaterialCount(std::size_t count, const std::string& file) const;
 
   private:
-    int add(const std::string& key, const std::string& name, const std::string& bytes);
+    int add(const std::string& key, const std::string& name, const std::string& bytes,
+            TextureEncoding encoding = TextureEncoding::Colour);
 
     FileSource& files_;
     Scene& scene_;

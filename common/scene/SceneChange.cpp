@@ -37,7 +37,9 @@ void apply(SceneState& s, const SceneChange& change) {
                 checkIndex(c.material, s.materials, "material");
                 Material value = c.value;
                 value.name = s.materials[c.material].name;
+                // Textures are the scene's files, which no change carries.
                 value.diffuseTexture = s.materials[c.material].diffuseTexture;
+                value.metallicRoughnessTexture = s.materials[c.material].metallicRoughnessTexture;
                 s.materials[c.material] = value;
             }
         },

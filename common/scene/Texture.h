@@ -15,6 +15,7 @@ struct Texture {
     int height = 0;
     std::vector<glm::vec3> texels;  ///< row-major; row 0 is the top of the image (v = 1)
     glm::vec3 average{0.0f};        ///< mean texel, used for the scene's mean albedo
+    glm::vec3 minimum{0.0f};        ///< per channel: bounds a roughness map's sharpest lobe
 
     /// Bilinear lookup with wrapping; (u, v) as in OBJ, v = 0 at the bottom.
     glm::vec3 sample(glm::vec2 uv) const;

@@ -3,6 +3,7 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <unistd.h>
+#include <glm/common.hpp>
 
 #include <algorithm>
 #include <array>
@@ -117,12 +118,12 @@ glm::vec3 rgbAt(const std::vector<T>& pixels, std::size_t i, int channels, Decod
     return {decode(p[0]), decode(p[1]), decode(p[2])};
 }
 
-void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture) {
+void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture, bool data) {
     const OIIO::ImageSpec& spec = in.spec();
     const int channels = std::min(spec.nchannels, kReadChannels);
     const std::size_t count = static_cast<std::size_t>(texture.width) * texture.height;
     texture.texels.resize(count);
-    if (spec.format == OIIO::TypeDesc::UINT8 && !isLinear(spec)) {
+    if (spec.format == OIIO::TypeDesc::UINT8 && !isLinear(spec) && !data) {
         // The common case (JPEG, PNG): a table lookup per channel instead of a pow.
         std::vector<unsigned char> pixels(count * channels);
         if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data())) {
@@ -139,7 +140,7 @@ void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture)
     if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data())) {
         throw SceneError::inFile(name, "cannot decode image: " + in.geterror());
     }
-    const bool linear = isLinear(spec);
+    const bool linear = data || isLinear(spec);
     for (std::size_t i = 0; i < count; ++i) {
         texture.texels[i] = rgbAt(pixels, i, channels, [&](float c) {
             c = std::isfinite(c) ? std::max(c, 0.0f) : 0.0f;
@@ -182,7 +183,7 @@ glm::vec3 meanOf(const std::vector<glm::vec3>& texels) {
 }  // namespace
 
 Texture decodeTexture(const std::string& name, const std::string& bytes,
-                      const TextureLimits& limits) {
+                      const TextureLimits& limits, TextureEncoding encoding) {
     OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
     std::unique_ptr<TempImageFile> temp;
     auto in = openImage(name, bytes, proxy, temp);
@@ -193,9 +194,11 @@ Texture decodeTexture(const std::string& name, const std::string& bytes,
     texture.path = name;
     texture.width = spec.width;
     texture.height = spec.height;
-    readTexels(*in, name, texture);
+    readTexels(*in, name, texture, encoding == TextureEncoding::Data);
     in->close();
     texture.average = meanOf(texture.texels);
+    texture.minimum = texture.texels.empty() ? glm::vec3(0.0f) : texture.texels.front();
+    for (const glm::vec3& t : texture.texels) texture.minimum = glm::min(texture.minimum, t);
     return texture;
 }
 

@@ -21,13 +21,20 @@ struct TextureLimits {
     Budget* scenePixels = nullptr;
 };
 
+/// How an integer image's values map to linear ones.
+enum class TextureEncoding {
+    Colour,  ///< sRGB-encoded unless the file says it is linear (colours: base colour, Kd)
+    Data,    ///< the values themselves (glTF metallicRoughnessTexture, normal maps)
+};
+
 /// Decodes an image into linear RGB. Integer images (8- or 16-bit) are taken as sRGB-encoded
-/// unless the file says it is linear; float images are linear. Grey images are replicated to
-/// RGB, alpha is dropped. `name` (its extension) picks the decoder and names the texture.
-/// Throws SceneError naming `name` when the bytes are not a readable image, or when its header
-/// claims more pixels than `limits` allow (then no pixel memory is allocated).
+/// unless the file says it is linear or `encoding` is Data; float images are linear. Grey images
+/// are replicated to RGB, alpha is dropped. `name` (its extension) picks the decoder and names the
+/// texture. Throws SceneError naming `name` when the bytes are not a readable image, or when its
+/// header claims more pixels than `limits` allow (then no pixel memory is allocated).
 Texture decodeTexture(const std::string& name, const std::string& bytes,
-                      const TextureLimits& limits = {});
+                      const TextureLimits& limits = {},
+                      TextureEncoding encoding = TextureEncoding::Colour);
 
 /// `path` itself when it exists; else the one file in the same folder whose name equals it
 /// ignoring case (logged as a warning naming both); else nothing.
