@@ -1,14 +1,17 @@
-// Writes the seed corpus of fuzz_protocol (fuzz/corpus/protocol/), or checks it.
+// Writes the seed corpus of fuzz_protocol, or checks it. The build runs `write` into
+// build-fuzz/fuzz/seeds/protocol/ whenever this tool is rebuilt, that is whenever the protocol
+// code or protocol/TestMessages.h changes (fuzz/CMakeLists.txt): no seed is committed, so the
+// seeds always speak the wire of the checkout.
 //
 //   make_protocol_seeds write DIR   one file per seed, from protocol/TestMessages.h
-//   make_protocol_seeds check DIR   every seed still decodes (a ctest test)
+//   make_protocol_seeds check DIR   every seed decodes (the ctest test Fuzz.protocol_seeds)
 //
 // Seeds come in the shapes the fuzz target reads: "<Type>[-variant].msg" is a stream of whole
 // messages (header and payload, as on the socket), "<Type>[-variant].payload" is one payload
 // alone, "SceneData[-variant].body" and "TileResult[-variant].body" are the uncompressed part
 // of one (see CompressedParts.h). A seed the decoder refuses only teaches the fuzzer the refusal
-// path, so the check fails when the protocol changes and the committed seeds fall behind:
-// regenerate them.
+// path, so the check fails when one does: the encoder writes what the decoder refuses, or a
+// seed below is built wrong (or DIR holds files from elsewhere).
 
 #include <cmath>
 #include <cstdio>
@@ -197,8 +200,9 @@ int check(const fs::path& dir) {
     }
     std::printf("%d seeds decode, %d do not\n", checked, failed);
     if (failed > 0)
-        std::fprintf(stderr, "regenerate them: make_protocol_seeds write %s\n",
-                     dir.string().c_str());
+        std::fprintf(stderr,
+                     "the build writes these seeds with the current encoder: a seed the decoder "
+                     "refuses means they disagree, or make_protocol_seeds.cpp builds it wrong\n");
     return failed == 0 && checked > 0 ? 0 : 1;
 }
 

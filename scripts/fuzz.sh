@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang into build-fuzz/ and runs each for a longer time
-# (docs/FUZZING.md). Inputs that find new coverage collect in build-fuzz/fuzz/corpus/<target>/
-# and are reused by the next run; a crash stops that fuzzer and leaves its reproducer in
-# build-fuzz/fuzz/artifacts/<target>/.
+# (docs/FUZZING.md). They start from the seeds the build writes into build-fuzz/fuzz/seeds/
+# (building a fuzz target writes its seeds) and, for fuzz_scene, the hand-made ones of
+# fuzz/corpus/scene-handmade/. Inputs that find new coverage collect in
+# build-fuzz/fuzz/corpus/<target>/ and are reused by the next run; a crash stops that fuzzer and
+# leaves its reproducer in build-fuzz/fuzz/artifacts/<target>/.
 # Usage: scripts/fuzz.sh [seconds per target, default 600] [extra libFuzzer flags...]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -16,18 +18,22 @@ if ! command -v clang++ >/dev/null; then
 fi
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DIGI_FUZZ=ON \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build "$build" --target fuzz_protocol fuzz_scene -j "$(nproc)"
+# The seed targets write build-fuzz/fuzz/seeds/ (the fuzz targets depend on them anyway).
+cmake --build "$build" --target fuzz_protocol fuzz_scene fuzz_protocol_seeds fuzz_scene_seeds \
+  -j "$(nproc)"
 
 status=0
 for target in protocol scene; do
   corpus="$build/fuzz/corpus/$target"
   artifacts="$build/fuzz/artifacts/$target"
   log="$build/fuzz/$target.log"
+  seeds=("$build/fuzz/seeds/$target")
+  if [ "$target" = scene ]; then seeds+=("$root/fuzz/corpus/scene-handmade"); fi
   mkdir -p "$corpus" "$artifacts"
   echo "== fuzz_$target: $seconds s (log: $log)"
-  # New inputs go to the first folder; the committed seeds are only read.
+  # New inputs go to the first folder; the seeds are only read.
   if "$build/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=30 -print_final_stats=1 \
-    -artifact_prefix="$artifacts/" "$@" "$corpus" "$root/fuzz/corpus/$target" >"$log" 2>&1; then
+    -artifact_prefix="$artifacts/" "$@" "$corpus" "${seeds[@]}" >"$log" 2>&1; then
     result="ok"
   else
     result="FAILED (reproducer in $artifacts/)"
