@@ -227,7 +227,7 @@ TEST(ChangeCodec, SizesOfEveryKindAreAsDocumented) {
     EXPECT_EQ(encodeChange(TransformChange{}).size(), 41u);
     EXPECT_EQ(encodeChange(PointLightChange{}).size(), 30u);
     EXPECT_EQ(encodeChange(QuadLightChange{}).size(), 54u);
-    EXPECT_EQ(encodeChange(MaterialChange{}).size(), 63u);
+    EXPECT_EQ(encodeChange(MaterialChange{}).size(), 71u);
     EXPECT_EQ(kMinChangeBytes, 30u);
 }
 
@@ -329,8 +329,16 @@ TEST(ChangeCodec, BadBooleansAreRefusedWithIndexAndField) {
     EXPECT_EQ(errorWithByte(kPoint, 29, 1), "(no error)");
 }
 
+TEST(ChangeCodec, RoughnessAndMetallicMustBeFractions) {
+    EXPECT_CONTAINS(errorAfter([](auto& c) { as<MaterialChange>(c, 5).value.roughness = 1.5f; }),
+                    "change 5 (material): roughness is 1.500000, expected in [0, 1]");
+    EXPECT_CONTAINS(errorAfter([](auto& c) { as<MaterialChange>(c, 5).value.metallic = -0.25f; }),
+                    "change 5 (material): metallic is -0.250000, expected in [0, 1]");
+}
+
 TEST(ChangeCodec, UnknownReflectionIsRefusedWithIndex) {
-    EXPECT_CONTAINS(errorWithByte(kMaterial, 33, 3), "change 4 (material): reflection is 3");
+    EXPECT_EQ(errorWithByte(kMaterial, 33, 3), "(no error)");  // 3 is GGX
+    EXPECT_CONTAINS(errorWithByte(kMaterial, 33, 4), "change 4 (material): reflection is 4");
     EXPECT_CONTAINS(errorAfter([](auto& c) {
                         as<MaterialChange>(c, 5).value.reflection = static_cast<Reflection>(200);
                     }),
@@ -477,8 +485,8 @@ TEST(ChangeCodec, SceneDataChangeCountIsCheckedToo) {
 }
 
 TEST(ChangeCodec, EncoderRefusesAnUpdateOverSixteenMebibytes) {
-    // 63-byte material changes: one more than fits in 16 MiB.
-    const std::size_t fits = ((16u << 20) - 4) / 63;
+    // 71-byte material changes: one more than fits in 16 MiB.
+    const std::size_t fits = ((16u << 20) - 4) / 71;
     std::vector<SceneChange> changes(fits, MaterialChange{});
     EXPECT_LE(encodePayload(SceneUpdate{changes}).size(), 16u << 20);
     changes.push_back(MaterialChange{});

@@ -129,6 +129,35 @@ TEST(EndToEnd, ThreeClientsRenderAManyLightSceneExactlyAsOneDoes) {
     fs::remove_all(dir);
 }
 
+// glTF metallic-roughness (GGX) lobes sample with each pixel's own numbers and VPLs carry their
+// lobe: the image of Khronos' 7 x 7 grid of metal and dielectric spheres, smooth to rough, does
+// not depend on which client rendered which tile, first frame and accumulated ones alike.
+TEST(EndToEnd, ThreeClientsRenderMetallicRoughnessSpheresExactlyAsOneDoes) {
+    const fs::path gltf = sourceDir() /
+                          "../shared/scenes/gltf/MetalRoughSpheresNoTextures/glTF/"
+                          "MetalRoughSpheresNoTextures.gltf";
+    if (!fs::exists(gltf)) GTEST_SKIP() << gltf << " is not here";
+    const fs::path dir = scratchDir("metal-rough");
+    const std::vector<std::string> common = {"--scene",  gltf.string(), "--width",  "96",
+                                             "--height", "72",          "--frames", "4",
+                                             "--listen", "127.0.0.1:0"};
+    auto args3 = common, args1 = common;
+    args3.insert(args3.end(), {"--local-clients", "3", "--output", (dir / "three.exr").string()});
+    args1.insert(args1.end(), {"--local-clients", "1", "--output", (dir / "one.exr").string()});
+    const ProcessResult three = runMaster(dir, "three", args3), one = runMaster(dir, "one", args1);
+    ASSERT_EQ(three.exitCode, 0) << three.output;
+    ASSERT_EQ(one.exitCode, 0) << one.output;
+    const Image a = readImage(dir / "three.exr"), b = readImage(dir / "one.exr");
+    expectFinite(a, "three.exr");
+    double sum = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        ASSERT_EQ(a.pixels[i], b.pixels[i]) << "pixel " << i % 96 << "," << i / 96 << " differs";
+        sum += luminance(a.pixels[i]);
+    }
+    EXPECT_GT(sum / double(a.pixels.size()), 0.01);
+    fs::remove_all(dir);
+}
+
 TEST(EndToEnd, ABadSceneFileIsAClearErrorAndANonZeroExit) {
     const fs::path dir = scratchDir("bad");
     std::ofstream(dir / "bad.json")

@@ -1,11 +1,16 @@
 // glTF: the hand-written triangle.gltf (node transforms, materials, a punctual light).
 
 #include <cmath>
+#include <fstream>
+#include <functional>
+#include <sstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "scene/SceneLoader.h"
 #include "scene/TestScenes.h"
+#include "scene/TextureLoader.h"
 
 namespace igi {
 namespace {
@@ -45,15 +50,21 @@ TEST_F(GltfTriangle, Materials) {
     const auto& mats = scene_->materials;
     ASSERT_EQ(mats.size(), 3u);
     EXPECT_EQ(mats[0].name, "chrome");
-    EXPECT_EQ(mats[0].reflection, Reflection::Mirror);
-    expectNear(mats[0].specular, {0.9f, 0.8f, 0.7f});
+    // Metallic-roughness as the specification's GGX (roughness 0.05: alpha 0.0025, a lobe).
+    EXPECT_EQ(mats[0].reflection, Reflection::Ggx);
+    expectNear(mats[0].diffuse, {0.9f, 0.8f, 0.7f});  // the base colour
+    EXPECT_FLOAT_EQ(mats[0].metallic, 1.0f);
+    EXPECT_FLOAT_EQ(mats[0].roughness, 0.05f);
+    EXPECT_FALSE(mats[0].isSpecular());
     EXPECT_EQ(mats[1].name, "water");
     EXPECT_TRUE(mats[1].glass);
     EXPECT_FLOAT_EQ(mats[1].ior, 1.33f);
     EXPECT_EQ(mats[2].name, "glow");
     expectNear(mats[2].emission, {4, 2, 1});  // emissiveFactor x emissiveStrength
     expectNear(mats[2].diffuse, {0.2f, 0.3f, 0.4f});
-    EXPECT_EQ(mats[2].reflection, Reflection::None);
+    EXPECT_EQ(mats[2].reflection, Reflection::Ggx);
+    EXPECT_FLOAT_EQ(mats[2].metallic, 0.0f);
+    EXPECT_FLOAT_EQ(mats[2].roughness, 1.0f);  // the specification's default
 }
 
 TEST_F(GltfTriangle, PunctualLightPlacedByNodesAndMeshTransform) {
@@ -85,6 +96,82 @@ TEST(GltfLoader, InvalidJsonIsAnErrorNamingTheFile) {
         test::parseInline(R"({"meshes": [{"file": "m.gltf"}]})", {{"m.gltf", "{ not json"}});
     });
     EXPECT_NE(what.find("m.gltf: cannot load glTF"), std::string::npos) << what;
+}
+
+// plain.gltf with `edit` applied to its JSON, loaded as the scene's one mesh.
+Scene plainGltfWith(const std::function<void(nlohmann::json&)>& edit) {
+    auto read = [](const char* name) {
+        std::ifstream in(test::testdataDir() / "gltf" / name, std::ios::binary);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    };
+    nlohmann::json gltf = nlohmann::json::parse(read("plain.gltf"));
+    edit(gltf);
+    return test::parseInline(R"({"meshes": [{"file": "plain.gltf"}]})",
+                             {{"plain.gltf", gltf.dump()}, {"plain.bin", read("plain.bin")}});
+}
+
+// A required extension that igi does not model is an error naming it; a used one, and every
+// material feature rendered without, is named in one warning per file.
+TEST(GltfFeatures, UnsupportedRequiredExtensionIsAnErrorAndUnmodelledOnesAreNamed) {
+    const std::string error = test::sceneErrorOf([] {
+        plainGltfWith([](nlohmann::json& g) {
+            g["extensionsUsed"] = {"KHR_draco_mesh_compression", "KHR_materials_ior"};
+            g["extensionsRequired"] = {"KHR_draco_mesh_compression", "KHR_materials_ior"};
+        });
+    });
+    EXPECT_NE(error.find("plain.gltf"), std::string::npos) << error;
+    EXPECT_NE(error.find("/extensionsRequired"), std::string::npos) << error;
+    EXPECT_NE(error.find("requires KHR_draco_mesh_compression,"), std::string::npos) << error;
+
+    test::CapturedLog log;
+    plainGltfWith([](nlohmann::json& g) {
+        g["extensionsUsed"] = {"KHR_materials_clearcoat", "KHR_materials_sheen",
+                               "KHR_materials_emissive_strength"};
+        g["materials"] =
+            nlohmann::json::array({{{"name", "a"},
+                                    {"normalTexture", {{"index", 0}}},
+                                    {"occlusionTexture", {{"index", 0}}},
+                                    {"alphaMode", "MASK"}},
+                                   {{"name", "b"}, {"normalTexture", {{"index", 0}}}}});
+        g["textures"] = nlohmann::json::array({{{"source", 0}}});
+        g["images"] = nlohmann::json::array({{{"uri", "missing.png"}}});
+    });
+    const std::string text = log.text();
+    EXPECT_NE(text.find("plain.gltf: extensions not modelled, rendered without them: "
+                        "KHR_materials_clearcoat, KHR_materials_sheen"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("alphaMode MASK"), std::string::npos) << text;
+    EXPECT_NE(text.find("occlusionTexture"), std::string::npos) << text;
+    // One warning per file, not per material.
+    EXPECT_EQ(text.find("normalTexture"), text.rfind("normalTexture")) << text;
+}
+
+// The default material of the specification (no pbrMetallicRoughness): a rough white metal.
+TEST(GltfFeatures, MaterialWithoutMetallicRoughnessIsARoughWhiteMetal) {
+    const Scene scene = plainGltfWith([](nlohmann::json& g) {
+        g["materials"] = nlohmann::json::array({{{"name", "bare"}}});
+        g["meshes"][0]["primitives"][0]["material"] = 0;
+    });
+    ASSERT_EQ(scene.materials.size(), 1u);
+    const Material& m = scene.materials[0];
+    EXPECT_EQ(m.reflection, Reflection::Ggx);
+    EXPECT_FLOAT_EQ(m.metallic, 1.0f);
+    EXPECT_FLOAT_EQ(m.roughness, 1.0f);
+    EXPECT_EQ(m.diffuse, glm::vec3(1.0f));
+}
+
+// A data texture (metallicRoughnessTexture) keeps its 8-bit values; a colour one is sRGB.
+TEST(GltfFeatures, DataTexturesAreNotSrgbDecoded) {
+    // A 1 x 1 grey PGM of value 128.
+    const std::string pgm = std::string("P5\n1 1\n255\n") + char(128);
+    const Texture data = decodeTexture("grey.pgm", pgm, {}, TextureEncoding::Data);
+    const Texture colour = decodeTexture("grey.pgm", pgm, {}, TextureEncoding::Colour);
+    EXPECT_NEAR(data.texels[0].x, 128.0f / 255.0f, 1e-6f);
+    EXPECT_NEAR(colour.texels[0].x, 0.2158605f, 1e-4f);  // sRGB 128
+    EXPECT_EQ(data.minimum, data.texels[0]);
 }
 
 }  // namespace

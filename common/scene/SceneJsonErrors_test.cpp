@@ -123,7 +123,7 @@ TEST(SceneJsonErrors, BadTypes) {
                         triangleFiles());
         }),
         "/materials/a/type: unknown value 'metal' (expected one of: diffuse, glossy, mirror, "
-        "glass)");
+        "glass, metallic_roughness)");
     EXPECT_CONTAINS(
         sceneErrorOf([] { parseInline(withLight(R"("render": {"integrator": "bdpt"})")); }),
         "/render/integrator: unknown value 'bdpt'");
