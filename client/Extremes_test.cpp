@@ -13,7 +13,6 @@
 
 #include <gtest/gtest.h>
 
-#include "scene/CameraModel.h"
 #include "CausticShooter.h"
 #include "Codec.h"
 #include "IgiIntegrator.h"
@@ -23,6 +22,7 @@
 #include "image/ToneMap.h"
 #include "math/Color.h"
 #include "math/Warp.h"
+#include "scene/CameraModel.h"
 
 namespace igi {
 namespace {

@@ -38,7 +38,7 @@ glm::vec3 viewAt(float cosTheta) {
 
 SurfaceBrdf ggxBrdf(float kd, float f0, float alpha, glm::vec3 wo) {
     const glm::vec3 n(0, 0, 1);
-    return SurfaceBrdf::makeGgx(glm::vec3(kd), glm::vec3(f0), alpha, n, wo, reflect(wo, n));
+    return SurfaceBrdf::makeGgx(glm::vec3(kd), glm::vec3(f0), alpha, n, reflect(wo, n));
 }
 
 // Monte Carlo over the VNDF sampler: the mean of g(w) / pdf(w), and the share of samples that
@@ -158,8 +158,10 @@ TEST(GgxBrdf, MixtureDensityMatchesItsSampler) {
     const glm::vec3 wo = glm::normalize(glm::vec3(0.5f, -0.2f, 0.7f));
     for (const float alpha : {0.3f, 0.08f}) {
         const SurfaceBrdf b = ggxBrdf(0.5f, 0.04f, alpha, wo);
-        ASSERT_GT(b.sampleGlossy, 0.0f);
-        ASSERT_GT(b.sampleDiffuse, 0.0f);
+        ASSERT_GT(b.glossySampling(), 0.0f);
+        ASSERT_LT(b.glossySampling(), 1.0f);
+        // The view is the mirror direction's image: what the BRDF was made for.
+        EXPECT_NEAR(glm::length(b.view() - wo), 0.0f, 1e-6f);
         auto g = [&](glm::vec3 w) {
             return w.z > 0 ? double(w.z) * (1.0 + double(w.y) * double(w.y)) : 0.0;
         };
@@ -203,8 +205,9 @@ TEST(GgxBrdf, SampledGlossyWeightIsFCosOverItsDensity) {
         glm::vec3 direction, weight;
         if (!sampleLobe(l, Lobe::Glossy, {u(rng), u(rng)}, direction, weight)) continue;
         ++taken;
-        const glm::vec3 expected = l.brdf.glossy(direction) *
-                                   (direction.z / ggx::pdf(l.brdf.alpha, l.normal, direction, wo));
+        const glm::vec3 expected =
+            l.brdf.glossy(direction) *
+            (direction.z / ggx::pdf(l.brdf.exponent, l.normal, direction, wo));
         EXPECT_NEAR(weight.x, expected.x, 1e-4f * expected.x);
         EXPECT_LE(weight.x, 1.0f + 1e-4f);  // F G2 / G1 with F <= 1
     }
@@ -225,9 +228,9 @@ TEST(GgxBrdf, MetallicRoughnessMapsToTheLobes) {
     hit.metallic = 0.25f;
     const glm::vec3 wo(0, 0, 1);
     Lobes l = lobesAt(hit, wo);
-    EXPECT_NEAR(l.brdf.f0.x, 0.75f * 0.04f + 0.25f * 0.5f, 1e-6f);
+    EXPECT_NEAR(l.brdf.ks.x, 0.75f * 0.04f + 0.25f * 0.5f, 1e-6f);
     EXPECT_NEAR(l.brdf.kd.x, 0.5f * 0.75f * 0.96f, 1e-6f);
-    EXPECT_NEAR(l.brdf.alpha, 0.25f, 1e-6f);
+    EXPECT_NEAR(l.brdf.exponent, 0.25f, 1e-6f);  // alpha
     EXPECT_TRUE(isBlack(l.reflection));
     hit.roughness = 0.01f;
     l = lobesAt(hit, wo);

@@ -203,7 +203,7 @@ void IgiIntegrator::followChains(PixelPath& p, int pixel,
 
     // The end point that reflects most is the one the master filters.
     auto reflectance = [](const ChainEnd& e) {
-        return luminance(e.throughput * (e.lobes.brdf.kd + e.lobes.brdf.ks));
+        return luminance(e.throughput * (e.lobes.brdf.kd + e.lobes.brdf.glossyAlbedo()));
     };
     for (int i = 0; i < 3; ++i)
         if (p.ends[i] &&

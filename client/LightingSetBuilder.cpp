@@ -52,9 +52,9 @@ Vpl vplAt(const TraceableScene& scene, const SurfacePoint& hit, const Lobes& lob
     if (b.hasGlossy() && b.model == GlossyModel::Ggx) {
         v.ggx = true;
         v.glossyPower = flux;
-        v.alpha = b.alpha;
-        v.f0 = b.f0;
-        v.incoming = lobes.wo;  // where the light came from
+        v.exponent = b.exponent;  // alpha
+        v.f0 = b.ks;
+        v.mirror = lobes.mirrorDirection;  // lobes.wo, where the light came from, mirrored
     } else if (b.hasGlossy()) {
         v.glossyPower = flux * b.ks * ((b.exponent + 2.0f) * 0.5f * kInvPi);
         v.exponent = b.exponent;

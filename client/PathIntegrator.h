@@ -2,11 +2,11 @@
 
 #include <cstdint>
 
-#include "scene/CameraModel.h"
 #include "Lights.h"
 #include "Scattering.h"
 #include "TraceableScene.h"
 #include "render/RenderSettings.h"
+#include "scene/CameraModel.h"
 
 namespace igi {
 

@@ -23,7 +23,7 @@ namespace {
 // 1 - f0 of the dielectric rather than the specification's 1 - F(v.h): a constant keeps it
 // Lambertian, so that its light is irradiance times kd as the master filters it, and the BRDF
 // reciprocal, as VPLs need (docs/MATERIALS.md).
-Lobes withGgx(const SurfacePoint& hit, Lobes l) {
+void setGgx(const SurfacePoint& hit, Lobes& l) {
     const Material& m = *hit.material;
     const float metallic = std::clamp(hit.metallic, 0.0f, 1.0f);
     const float roughness = std::clamp(hit.roughness, 0.0f, 1.0f);
@@ -35,13 +35,11 @@ Lobes withGgx(const SurfacePoint& hit, Lobes l) {
     const float alpha = roughness * roughness;
     if (alpha < kMinGgxAlpha) {  // a mirror of Fresnel reflectance over the diffuse lobe
         l.brdf = SurfaceBrdf::make(kd, glm::vec3(0.0f), 0.0f, l.normal);
-        l.brdf.wo = l.wo;
         l.brdf.mirror = l.mirrorDirection;
         l.reflection = ggx::schlick(f0, std::max(0.0f, glm::dot(l.wo, l.normal)));
-        return l;
+        return;
     }
-    l.brdf = SurfaceBrdf::makeGgx(kd, f0, alpha, l.normal, l.wo, l.mirrorDirection);
-    return l;
+    l.brdf = SurfaceBrdf::makeGgx(kd, f0, alpha, l.normal, l.mirrorDirection);
 }
 
 }  // namespace
@@ -67,11 +65,13 @@ Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
         }
         return l;
     }
-    if (m.reflection == Reflection::Ggx) return withGgx(hit, std::move(l));
+    if (m.reflection == Reflection::Ggx) {
+        setGgx(hit, l);  // (in place: every return is `l`, which the compiler builds in place)
+        return l;
+    }
     const bool glossy = m.reflection == Reflection::Glossy && m.phongExponent >= 0;
     l.brdf = SurfaceBrdf::make(hit.albedo, glossy ? m.specular : glm::vec3(0.0f), m.phongExponent,
                                l.normal);
-    l.brdf.wo = wo;
     l.brdf.mirror = l.mirrorDirection;
     if (m.reflection == Reflection::Mirror) l.reflection = m.specular;
     return l;
@@ -82,7 +82,7 @@ float lobeWeight(const Lobes& l, Lobe lobe) {
         case Lobe::Diffuse:
             return meanComponent(l.brdf.kd);
         case Lobe::Glossy:
-            return meanComponent(l.brdf.ks);
+            return meanComponent(l.brdf.glossyAlbedo());
         case Lobe::Reflection:
             return meanComponent(l.reflection);
         case Lobe::Transmission:
@@ -98,7 +98,7 @@ float lobeMaxWeight(const Lobes& l, Lobe lobe) {
         case Lobe::Diffuse:
             return maxComponent(l.brdf.kd);
         case Lobe::Glossy:
-            return maxComponent(l.brdf.ks);
+            return maxComponent(l.brdf.glossyAlbedo());
         case Lobe::Reflection:
             return maxComponent(l.reflection);
         case Lobe::Transmission:
@@ -171,10 +171,11 @@ bool sampleLobe(const Lobes& l, Lobe lobe, glm::vec2 u, glm::vec3& direction, gl
         case Lobe::Glossy: {
             if (l.brdf.model == GlossyModel::Ggx) {
                 // By visible normals: f cos / pdf is F G2 / G1(wo), at most F.
-                direction = ggx::sample(l.brdf.alpha, l.normal, l.wo, u);
+                const float alpha = l.brdf.exponent;
+                direction = ggx::sample(alpha, l.normal, l.wo, u);
                 const float cosTheta = glm::dot(direction, l.normal);
                 if (cosTheta <= 0 || glm::dot(direction, l.faceNormal) <= 0) return false;
-                const float pdf = ggx::pdf(l.brdf.alpha, l.normal, direction, l.wo);
+                const float pdf = ggx::pdf(alpha, l.normal, direction, l.wo);
                 if (!(pdf > 0)) return false;
                 weight = l.brdf.glossy(direction) * (cosTheta / pdf);
                 return isFinite(weight);

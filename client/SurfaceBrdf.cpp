@@ -5,8 +5,12 @@
 namespace igi {
 
 glm::vec3 SurfaceBrdf::sample(glm::vec2 u, float uLobe) const {
-    if (uLobe < sampleDiffuse) return Frame(normal).toWorld(squareToCosineHemisphere(u));
-    if (model == GlossyModel::Ggx) return ggx::sample(alpha, normal, wo, u);
+    if (model == GlossyModel::Ggx) {
+        if (uLobe < 1.0f - glossySampling())
+            return Frame(normal).toWorld(squareToCosineHemisphere(u));
+        return ggx::sample(exponent, normal, view(), u);
+    }
+    if (uLobe < diffuseShare) return Frame(normal).toWorld(squareToCosineHemisphere(u));
     return Frame(mirror).toWorld(squareToPhongLobe(u, exponent));
 }
 

@@ -21,37 +21,31 @@ enum class GlossyModel : std::uint8_t {
     /// alpha the angle between wi and the mirror direction of wo (the same as between wo and the
     /// mirror direction of wi: f is reciprocal).
     Phong,
-    /// glTF metallic-roughness's GGX lobe of Fresnel reflectance f0 and roughness alpha
-    /// (client/Ggx.h).
+    /// glTF metallic-roughness's GGX lobe (client/Ggx.h): ks is its Fresnel reflectance at
+    /// normal incidence f0, `exponent` its alpha.
     Ggx,
 };
 
-/// The non-delta part of a material at a surface point, on one side of it, seen from wo: a
-/// Lambertian lobe of albedo kd and a glossy lobe (GlossyModel). Directions point away from
-/// the surface.
+/// The non-delta part of a material at a surface point, on one side of it, seen from the
+/// direction whose mirror image about `normal` is `mirror`: a Lambertian lobe of albedo kd and
+/// a glossy lobe (GlossyModel). Directions point away from the surface.
+///
+/// Kept small: eye paths make and copy one per pixel. The Phong fields carry GGX's parameters
+/// (ks its f0, exponent its alpha), and the view direction is mirror's image.
 struct SurfaceBrdf {
     glm::vec3 kd{0.0f};
-    /// Phong: the lobe's weight. GGX: its Fresnel reflectance seen from wo, F(f0, n.wo), an
-    /// estimate of its albedo for choosing lobes. Zero when the material has no glossy lobe.
-    glm::vec3 ks{0.0f};
-    float exponent = 0;      ///< Phong
+    glm::vec3 ks{0.0f};      ///< Phong: the lobe's weight; GGX: f0. Zero: no glossy lobe
+    float exponent = 0;      ///< Phong: the exponent; GGX: alpha = roughness^2 (>= ggx::kMinAlpha)
     glm::vec3 normal{0.0f};  ///< shading normal on the side the directions leave to
-    glm::vec3 wo{0.0f};      ///< toward the viewer
-    glm::vec3 mirror{0.0f};  ///< wo mirrored about `normal`
+    glm::vec3 mirror{0.0f};  ///< the direction of view mirrored about `normal`
     GlossyModel model = GlossyModel::Phong;
-    float alpha = 0;     ///< GGX: roughness^2, at least ggx::kMinAlpha
-    glm::vec3 f0{0.0f};  ///< GGX: Fresnel reflectance at normal incidence
-    /// The lobes' shares of the albedo, mean(kd) : mean(ks) (GGX: mean(f0)), summing to one
-    /// (or both zero). They weigh the lobes' sharpness, and must not depend on wo: both ends of
-    /// a VPL connection evaluate it.
+    /// The lobes' shares of the albedo, mean(kd) : mean(ks), summing to one (or both zero).
+    /// They weigh the lobes' sharpness and, for Phong, choose the lobe to sample. They must
+    /// not depend on the direction of view: both ends of a VPL connection evaluate them.
     float diffuseShare = 0;
     float glossyShare = 0;
-    /// The probabilities with which sample() draws each lobe (the shares for Phong; for GGX
-    /// mean(kd) : mean(ks), which follows the Fresnel reflectance toward grazing views).
-    float sampleDiffuse = 0;
-    float sampleGlossy = 0;
 
-    /// A Lambertian lobe and a Phong lobe (ks zero: none).
+    /// A Lambertian lobe and a Phong lobe (ks zero: none). Set `mirror` before evaluating it.
     static SurfaceBrdf make(glm::vec3 kd, glm::vec3 ks, float exponent, glm::vec3 normal) {
         SurfaceBrdf b;
         b.kd = kd;
@@ -63,38 +57,30 @@ struct SurfaceBrdf {
             b.diffuseShare = d / total;
             b.glossyShare = g / total;
         }
-        b.sampleDiffuse = b.diffuseShare;
-        b.sampleGlossy = b.glossyShare;
         return b;
     }
 
-    /// A Lambertian lobe and a GGX lobe (f0 zero: none), seen from wo.
+    /// A Lambertian lobe and a GGX lobe (f0 zero: none), seen from the mirror image of `mirror`.
     static SurfaceBrdf makeGgx(glm::vec3 kd, glm::vec3 f0, float alpha, glm::vec3 normal,
-                               glm::vec3 wo, glm::vec3 mirror) {
-        SurfaceBrdf b;
+                               glm::vec3 mirror) {
+        SurfaceBrdf b = make(kd, f0, std::max(alpha, ggx::kMinAlpha), normal);
         b.model = GlossyModel::Ggx;
-        b.kd = kd;
-        b.f0 = f0;
-        b.alpha = std::max(alpha, ggx::kMinAlpha);
-        b.normal = normal;
-        b.wo = wo;
         b.mirror = mirror;
-        if (!isBlack(f0)) b.ks = ggx::schlick(f0, std::max(0.0f, glm::dot(normal, wo)));
-        const float d = meanComponent(kd), g = meanComponent(f0), total = d + g;
-        if (total > 0) {
-            b.diffuseShare = d / total;
-            b.glossyShare = g / total;
-        }
-        const float gs = meanComponent(b.ks), sampled = d + gs;
-        if (sampled > 0) {
-            b.sampleDiffuse = d / sampled;
-            b.sampleGlossy = gs / sampled;
-        }
         return b;
     }
 
     bool empty() const { return !(diffuseShare > 0) && !(glossyShare > 0); }
     bool hasGlossy() const { return glossyShare > 0; }
+
+    /// The direction of view (GGX needs it; Phong only its mirror image).
+    glm::vec3 view() const { return 2.0f * glm::dot(normal, mirror) * normal - mirror; }
+    /// An estimate of the glossy lobe's albedo seen from the view, for choosing lobes: Phong's
+    /// ks; GGX's Fresnel reflectance F(f0, n.wo), which grows toward grazing views.
+    glm::vec3 glossyAlbedo() const {
+        if (model == GlossyModel::Ggx && hasGlossy())
+            return ggx::schlick(ks, std::max(0.0f, glm::dot(normal, mirror)));
+        return ks;
+    }
 
     /// Phong: cos^n(alpha), 0 behind the lobe.
     float lobe(float cosAlpha) const {
@@ -102,7 +88,7 @@ struct SurfaceBrdf {
     }
     /// The glossy lobe's value toward w (no cosine of incidence).
     glm::vec3 glossy(glm::vec3 w) const {
-        if (model == GlossyModel::Ggx) return ggx::evaluate(alpha, f0, normal, w, wo);
+        if (model == GlossyModel::Ggx) return ggx::evaluate(exponent, ks, normal, w, view());
         return ks * ((exponent + 2.0f) * (0.5f * kInvPi) * lobe(glm::dot(w, mirror)));
     }
     glm::vec3 diffuse() const { return kd * kInvPi; }
@@ -113,28 +99,39 @@ struct SurfaceBrdf {
     /// textures.
     float sharpness(glm::vec3 w) const {
         if (model == GlossyModel::Ggx)
-            return diffuseShare + glossyShare * ggx::sharpness(alpha, normal, w, wo);
+            return diffuseShare + glossyShare * ggx::sharpness(exponent, normal, w, view());
         return diffuseShare + glossyShare * (0.5f * (exponent + 2.0f)) * lobe(glm::dot(w, mirror));
     }
     float maxSharpness() const {
-        if (model == GlossyModel::Ggx) return diffuseShare + glossyShare * ggx::maxSharpness(alpha);
+        if (model == GlossyModel::Ggx)
+            return diffuseShare + glossyShare * ggx::maxSharpness(exponent);
         return diffuseShare + glossyShare * 0.5f * (exponent + 2.0f);
     }
 
-    /// Samples the mixture of the two lobes (cosine-weighted with probability sampleDiffuse,
-    /// the glossy lobe otherwise: Phong about the mirror direction, GGX by visible normals).
+    /// The probability with which sample() draws the glossy lobe: its share for Phong; for
+    /// GGX mean(glossyAlbedo()) : mean(kd), which follows the Fresnel reflectance.
+    float glossySampling() const {
+        if (model != GlossyModel::Ggx || !hasGlossy()) return glossyShare;
+        const float g = meanComponent(glossyAlbedo()), d = meanComponent(kd);
+        return g / (g + d);
+    }
+
+    /// Samples the mixture of the two lobes (cosine-weighted, or the glossy lobe with
+    /// probability glossySampling(): Phong about the mirror direction, GGX by visible normals).
     glm::vec3 sample(glm::vec2 u, float uLobe) const;
     /// The mixture's density (solid angle) of direction w.
     float pdf(glm::vec3 w) const {
         const float cosTheta = glm::dot(w, normal);
-        float p = 0;
-        if (sampleDiffuse > 0 && cosTheta > 0) p += sampleDiffuse * cosTheta * kInvPi;
-        if (sampleGlossy > 0) {
-            if (model == GlossyModel::Ggx)
-                p += sampleGlossy * ggx::pdf(alpha, normal, w, wo);
-            else
-                p += sampleGlossy * (exponent + 1.0f) * (0.5f * kInvPi) * lobe(glm::dot(w, mirror));
+        if (model == GlossyModel::Ggx) {
+            const float pGlossy = glossySampling();
+            float p = cosTheta > 0 ? (1.0f - pGlossy) * cosTheta * kInvPi : 0.0f;
+            if (pGlossy > 0) p += pGlossy * ggx::pdf(exponent, normal, w, view());
+            return p;
         }
+        float p = 0;
+        if (diffuseShare > 0 && cosTheta > 0) p += diffuseShare * cosTheta * kInvPi;
+        if (glossyShare > 0)
+            p += glossyShare * (exponent + 1.0f) * (0.5f * kInvPi) * lobe(glm::dot(w, mirror));
         return p;
     }
 };

@@ -20,23 +20,20 @@ namespace igi {
 /// cos(theta_x) / d^2. For an indirect VPL `power` is the flux that arrived times kd / pi and
 /// glossyPower that flux times the Phong lobe's ks (n + 2) / (2 pi): the VPL carries its
 /// surface's BRDF, evaluated toward whatever it lights. On a GGX surface (`ggx`) glossyPower is
-/// the flux that arrived from `incoming`, and the lobe's factor is the GGX BRDF f(incoming, -w)
-/// (client/Ggx.h) instead of the Phong lobe.
+/// the flux that arrived from the mirror image of `mirror`, and the lobe's factor is the GGX
+/// BRDF f(that direction, -w) (client/Ggx.h) instead of the Phong lobe.
 struct Vpl {
     glm::vec3 position{0.0f};  ///< already moved off its surface: shadow rays end here
     glm::vec3 normal{0.0f};
     glm::vec3 power{0.0f};
     bool omni = false;
+    bool ggx = false;  ///< a GGX lobe: `exponent` is its alpha (client/Ggx.h)
 
     // Indirect VPLs on glossy surfaces.
     glm::vec3 glossyPower{0.0f};
     float exponent = 0;
     glm::vec3 mirror{0.0f};  ///< the direction the light came from, mirrored about `normal`
-    // Indirect VPLs on GGX surfaces.
-    bool ggx = false;
-    float alpha = 0;
-    glm::vec3 f0{0.0f};
-    glm::vec3 incoming{0.0f};  ///< the direction the light came from
+    glm::vec3 f0{0.0f};      ///< GGX: the lobe's Fresnel reflectance at normal incidence
     /// Its surface's SurfaceBrdf::diffuseShare and glossyShare, for the connection bound.
     float diffuseShare = 1;
     float glossyShare = 0;
@@ -46,6 +43,8 @@ struct Vpl {
     float areaPdf = 0;
 
     bool glossy() const { return glossyShare > 0; }
+    /// GGX: the direction the light came from (mirror's image about the normal).
+    glm::vec3 incoming() const { return 2.0f * glm::dot(normal, mirror) * normal - mirror; }
     bool operator==(const Vpl&) const = default;
 
     /// What the VPL sends towards a receiver in the unit direction -w (w: from the receiver to
@@ -58,8 +57,9 @@ struct Vpl {
     Emission towards(glm::vec3 w) const {
         Emission e{power, diffuseShare};
         if (glossy() && ggx) {
-            e.intensity += glossyPower * ggx::evaluate(alpha, f0, normal, incoming, -w);
-            e.sharpness += glossyShare * ggx::sharpness(alpha, normal, incoming, -w);
+            const glm::vec3 in = incoming();
+            e.intensity += glossyPower * ggx::evaluate(exponent, f0, normal, in, -w);
+            e.sharpness += glossyShare * ggx::sharpness(exponent, normal, in, -w);
         } else if (glossy()) {
             const float c = -glm::dot(w, mirror);
             const float lobe = c > 0 ? std::pow(std::min(c, 1.0f), exponent) : 0.0f;
@@ -73,7 +73,7 @@ struct Vpl {
 /// The glossy lobe's intensity (its cosine left out) in the unit direction `out` leaving v.
 inline glm::vec3 glossyIntensity(const Vpl& v, glm::vec3 out) {
     if (!v.glossy()) return glm::vec3(0.0f);
-    if (v.ggx) return v.glossyPower * ggx::evaluate(v.alpha, v.f0, v.normal, v.incoming, out);
+    if (v.ggx) return v.glossyPower * ggx::evaluate(v.exponent, v.f0, v.normal, v.incoming(), out);
     const float c = glm::dot(out, v.mirror);
     return c > 0 ? v.glossyPower * std::pow(std::min(c, 1.0f), v.exponent) : glm::vec3(0.0f);
 }

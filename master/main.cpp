@@ -37,7 +37,9 @@ int main(int argc, char** argv) {
     igi::MasterOptions o;
     std::string scene, listen, logLevel = "info";
     std::vector<std::string> outputs;
-    app.add_option("--scene", scene, "scene file (.json) or a bare .obj")->required();
+    app.add_option("--scene", scene,
+                   "scene file (.json), or a bare model (.obj, .gltf, .glb) framed automatically")
+        ->required();
     app.add_flag("--allow-outside-paths", o.allowOutsidePaths,
                  "let the scene file name files outside its own folder (relative paths only)");
     app.add_option("--output", outputs,

@@ -207,4 +207,17 @@ Material materialFromMtl(const tinyobj::material_t& mtl, const std::string& mtlP
     return m;
 }
 
+std::vector<std::string> unmodelledMtlStatements(const tinyobj::material_t& mtl) {
+    std::vector<std::string> out;
+    if (mtl.dissolve < 1.0) out.push_back("d / Tr (opacity below one: rendered opaque)");
+    if (!mtl.alpha_texname.empty()) out.push_back("map_d");
+    if (!mtl.bump_texname.empty()) out.push_back("bump / map_bump");
+    if (!mtl.normal_texname.empty()) out.push_back("norm");
+    if (!mtl.displacement_texname.empty()) out.push_back("disp");
+    if (!mtl.specular_texname.empty()) out.push_back("map_Ks");
+    if (!mtl.specular_highlight_texname.empty()) out.push_back("map_Ns");
+    if (!mtl.emissive_texname.empty()) out.push_back("map_Ke");
+    return out;
+}
+
 }  // namespace igi

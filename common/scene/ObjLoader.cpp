@@ -4,6 +4,8 @@
 #include <cmath>
 #include <istream>
 #include <streambuf>
+#include <map>
+#include <set>
 #include <unordered_map>
 
 #include <spdlog/spdlog.h>
@@ -192,10 +194,18 @@ std::uint32_t appendMaterials(const ParsedObj& obj, const FileSourceMtlReader& r
                               SceneAssets& assets) {
     auto& materials = assets.scene().materials;
     const auto base = static_cast<std::uint32_t>(materials.size());
+    std::map<std::string, std::set<std::string>> unmodelled;  // by MTL file
     for (std::size_t i = 0; i < obj.materials.size(); ++i) {
         const std::string& mtlPath = reader.materialFiles().at(i);
         materials.push_back(
             materialFromMtl(obj.materials[i], mtlPath, reader.text(mtlPath), assets));
+        for (const std::string& s : unmodelledMtlStatements(obj.materials[i]))
+            unmodelled[mtlPath].insert(s);
+    }
+    for (const auto& [mtlPath, statements] : unmodelled) {
+        std::string list;
+        for (const std::string& s : statements) list += (list.empty() ? "" : ", ") + s;
+        spdlog::warn("{}: statements not modelled, rendered without them: {}", mtlPath, list);
     }
     return base;
 }
