@@ -146,9 +146,11 @@ struct ScaleCase {
     IntegratorKind integrator;
     int frames;
     bool glossy = false;
+    bool metallicRoughness = false;
 };
 void PrintTo(const ScaleCase& c, std::ostream* os) {
-    *os << nameOf(c.integrator) << ", " << c.frames << " frames" << (c.glossy ? ", glossy" : "");
+    *os << nameOf(c.integrator) << ", " << c.frames << " frames" << (c.glossy ? ", glossy" : "")
+        << (c.metallicRoughness ? ", metallic-roughness" : "");
 }
 
 /// The Cornell box of testing::cornellBox with its walls and box made glossy (Ks 0.2, Ns 40;
@@ -170,6 +172,26 @@ Scene glossyCornellBox(float scale) {
     return scene;
 }
 
+/// The same box in glTF metallic-roughness: a rough dielectric, a smooth one, a rough metal and a
+/// mirror-smooth metal (roughness 0: the mirror path), at every scale.
+Scene metallicRoughnessCornellBox(float scale) {
+    Scene scene = testing::cornellBox(scale, /*glassBall=*/true);
+    const float roughness[3] = {1.0f, 0.15f, 0.5f}, metallic[3] = {0.0f, 0.0f, 1.0f};
+    for (int m = 0; m < 3; ++m) {
+        scene.materials[m].reflection = Reflection::Ggx;
+        scene.materials[m].roughness = roughness[m];
+        scene.materials[m].metallic = metallic[m];
+    }
+    Material floor = scene.materials[0];
+    floor.name = "smooth metal floor";
+    floor.roughness = 0.0f;
+    floor.metallic = 1.0f;
+    scene.materials.push_back(floor);
+    scene.meshes[0].materialIds.assign(scene.meshes[0].materialIds.size(),
+                                       std::uint32_t(scene.materials.size() - 1));
+    return scene;
+}
+
 class SceneScale : public ::testing::TestWithParam<ScaleCase> {};
 
 // Geometry, camera and lights scaled by s (point-light intensity by s^2, area-light radiance
@@ -177,7 +199,9 @@ class SceneScale : public ::testing::TestWithParam<ScaleCase> {};
 TEST_P(SceneScale, ACornellBoxWithAGlassBallLooksTheSameFrom1eMinus4To1e4) {
     const ScaleCase c = GetParam();
     auto sceneAt = [&](float scale) {
-        Scene scene = c.glossy ? glossyCornellBox(scale) : testing::cornellBox(scale, true);
+        Scene scene = c.metallicRoughness ? metallicRoughnessCornellBox(scale)
+                      : c.glossy          ? glossyCornellBox(scale)
+                                          : testing::cornellBox(scale, true);
         scene.render.integrator = c.integrator;
         scene.render.pathSamples = 8;
         return scene;
@@ -201,10 +225,13 @@ INSTANTIATE_TEST_SUITE_P(Integrators, SceneScale,
                          ::testing::Values(ScaleCase{IntegratorKind::Igi, 4},
                                            ScaleCase{IntegratorKind::Path, 1},
                                            ScaleCase{IntegratorKind::Igi, 4, true},
-                                           ScaleCase{IntegratorKind::Path, 1, true}),
+                                           ScaleCase{IntegratorKind::Path, 1, true},
+                                           ScaleCase{IntegratorKind::Igi, 4, false, true},
+                                           ScaleCase{IntegratorKind::Path, 1, false, true}),
                          [](const auto& info) {
                              return std::string(nameOf(info.param.integrator)) +
-                                    (info.param.glossy ? "Glossy" : "");
+                                    (info.param.glossy ? "Glossy" : "") +
+                                    (info.param.metallicRoughness ? "MetallicRoughness" : "");
                          });
 
 // ---- Light intensity against exposure --------------------------------------------------------
