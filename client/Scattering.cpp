@@ -6,6 +6,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "NormalMap.h"
 #include "math/Color.h"
 #include "math/Frame.h"
 #include "math/Optics.h"
@@ -50,6 +51,14 @@ Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
     const bool front = glm::dot(wo, hit.geometricNormal) >= 0;
     l.faceNormal = front ? hit.geometricNormal : -hit.geometricNormal;
     l.normal = front ? hit.shadingNormal : -hit.shadingNormal;
+    // A normal map can turn the shading normal away from wo while wo is above the geometric
+    // surface: every GGX value and sample about it would be zero (black facets), the mirror
+    // direction below the surface. The fix is Cycles' ensure_valid_reflection: the normal bent
+    // toward the geometric one just enough that wo's mirror direction is above the surface
+    // (NormalMap.h). Only for normal-mapped materials, so that scenes without normal maps (whose
+    // interpolated normals may do the same) render exactly as before.
+    if (m.normalTexture >= 0)
+        l.normal = normalmap::ensureValidReflection(l.faceNormal, wo, l.normal);
     l.wo = wo;
     l.mirrorDirection = reflect(wo, l.normal);
     if (m.glass) {

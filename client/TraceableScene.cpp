@@ -11,6 +11,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include "NormalMap.h"
 #include "math/Color.h"
 
 namespace igi {
@@ -307,13 +308,16 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
     hit.geometricNormal = ng;
 
     hit.shadingNormal = ng;
+    glm::vec3 interpolated = ng;  // unit, not yet turned to ng's side: a normal map's frame
     if (!mesh.normals.empty()) {
         const glm::vec3 nObject =
             w * mesh.normals[t.x] + u * mesh.normals[t.y] + v * mesh.normals[t.z];
         const glm::vec3 ns = m.normalToWorld * nObject;
         const float nsLen = glm::length(ns);
-        if (nsLen > 0 && std::isfinite(nsLen))
+        if (nsLen > 0 && std::isfinite(nsLen)) {
             hit.shadingNormal = glm::dot(ns, ng) < 0 ? -ns / nsLen : ns / nsLen;
+            interpolated = ns / nsLen;
+        }
     }
     hit.uv = mesh.uvs.empty() ? glm::vec2(u, v)
                               : w * mesh.uvs[t.x] + u * mesh.uvs[t.y] + v * mesh.uvs[t.z];
@@ -333,6 +337,49 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
             hit.metallic *= t.z;
         }
     }
+    if (hit.material->normalTexture >= 0 && !mesh.uvs.empty())
+        applyNormalMap(m, t, u, v, interpolated, hit);
+}
+
+void TraceableScene::applyNormalMap(const MeshData& m, glm::uvec3 t, float u, float v, glm::vec3 n,
+                                    SurfacePoint& hit) const {
+    const Mesh& mesh = *m.mesh;
+    const float w = 1.0f - u - v;
+    const glm::mat3 toWorld(m.objectToWorld);
+    normalmap::TangentFrame frame;
+    bool framed = false;
+    // The vertices' TANGENT when all three have one ((0, 0, 0, 0) where the file gave none).
+    if (!mesh.tangents.empty()) {
+        const glm::vec4 ta = mesh.tangents[t.x], tb = mesh.tangents[t.y], tc = mesh.tangents[t.z];
+        if (ta.w != 0 && tb.w != 0 && tc.w != 0) {
+            const glm::vec4 ti = w * ta + u * tb + v * tc;
+            // A mirroring placement turns the bitangent's sign, as the loader's matrix does.
+            float sign = ti.w < 0 ? -1.0f : 1.0f;
+            if (glm::determinant(toWorld) < 0) sign = -sign;
+            framed = normalmap::frameFromTangent(n, toWorld * glm::vec3(ti), sign, frame);
+        }
+    }
+    // Else the triangle's uv derivatives: not MikkTSpace (NormalMap.h, frameFromUvs).
+    if (!framed) {
+        const glm::vec3 p[3] = {transformPoint(m.objectToWorld, mesh.positions[t.x]),
+                                transformPoint(m.objectToWorld, mesh.positions[t.y]),
+                                transformPoint(m.objectToWorld, mesh.positions[t.z])};
+        const glm::vec2 uv[3] = {mesh.uvs[t.x], mesh.uvs[t.y], mesh.uvs[t.z]};
+        framed = normalmap::frameFromUvs(n, p, uv, frame);
+    }
+    if (!framed) return;  // degenerate: the interpolated normal
+    const Material& mat = *hit.material;
+    const glm::vec3 texel = (*textures_)[mat.normalTexture].sample(hit.uv);
+    glm::vec3 mapped =
+        normalmap::perturb(n, frame, normalmap::tangentSpaceNormal(texel, mat.normalScale));
+    const glm::vec3 ng = hit.geometricNormal;
+    // Turned to ng's side with the interpolated normal; a map that tilts it below the
+    // geometric surface is mirrored in that surface (the view's own check is in lobesAt).
+    if (glm::dot(n, ng) < 0) mapped = -mapped;
+    const float below = glm::dot(mapped, ng);
+    if (below < 0) mapped -= 2.0f * below * ng;
+    const float len = glm::length(mapped);
+    if (len > 0 && std::isfinite(len)) hit.shadingNormal = mapped / len;
 }
 
 std::vector<TraceableScene::WorldTriangle> TraceableScene::trianglesWhere(

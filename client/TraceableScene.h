@@ -143,6 +143,10 @@ class TraceableScene {
     /// instanced) at barycentrics (u, v), distance t.
     void fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, std::uint32_t prim, float u,
                           float v, float t, SurfacePoint& hit) const;
+    /// Replaces hit.shadingNormal by the normal map's (the material has one, the mesh uvs);
+    /// `n` is the unit interpolated normal (or the face's) before it was turned to ng's side.
+    void applyNormalMap(const MeshData& m, glm::uvec3 t, float u, float v, glm::vec3 n,
+                        SurfacePoint& hit) const;
     std::vector<WorldTriangle> trianglesWhere(bool (*predicate)(const Material&)) const;
     glm::vec3 placedBoundsExtent() const;
     void computeMeanAlbedo(const std::vector<Texture>& textures);

@@ -254,7 +254,6 @@ void checkGltfFeatures(const std::string& path, const tinygltf::Model& model) {
         spdlog::warn("{}: extensions not modelled, rendered without them: {}", path, joined(used));
     std::set<std::string> ignored;
     for (const tinygltf::Material& m : model.materials) {
-        if (m.normalTexture.index >= 0) ignored.insert("normalTexture");
         if (m.occlusionTexture.index >= 0)
             ignored.insert(
                 "occlusionTexture (ambient occlusion is for rasterizers: a path tracer "
@@ -270,6 +269,10 @@ void checkGltfFeatures(const std::string& path, const tinygltf::Model& model) {
             if (t->index >= 0 && t->extensions.count("KHR_texture_transform"))
                 ignored.insert("KHR_texture_transform");
         }
+        if (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 0)
+            ignored.insert("texCoord other than 0");
+        if (m.normalTexture.index >= 0 && m.normalTexture.extensions.count("KHR_texture_transform"))
+            ignored.insert("KHR_texture_transform");
     }
     for (const tinygltf::Mesh& mesh : model.meshes)
         for (const tinygltf::Primitive& p : mesh.primitives)
@@ -326,6 +329,13 @@ class GltfMaterials {
                     dataTexture(pbr.metallicRoughnessTexture.index, "metallicRoughnessTexture");
             const double ior = extensionNumber(gm.extensions, "KHR_materials_ior", "ior", 1.5);
             m.ior = ior >= 1.0 && std::isfinite(ior) ? static_cast<float>(ior) : 1.5f;
+        }
+        // Tangent space, OpenGL's convention (green toward +v up the image), decoded linear.
+        if (gm.normalTexture.index >= 0) {
+            m.normalTexture = dataTexture(gm.normalTexture.index, "normalTexture");
+            m.normalScale = std::isfinite(gm.normalTexture.scale)
+                                ? static_cast<float>(gm.normalTexture.scale)
+                                : 1.0f;
         }
         conserveEnergy(m, path_ + ": material '" + m.name + "'");
         return m;
@@ -601,6 +611,7 @@ class GltfFlattener {
             for (const auto& p : m.primitives) {
                 withNormals_ = withNormals_ || p.attributes.count("NORMAL") > 0;
                 withUvs_ = withUvs_ || p.attributes.count("TEXCOORD_0") > 0;
+                withTangents_ = withTangents_ || p.attributes.count("TANGENT") > 0;
             }
         }
     }
@@ -723,12 +734,15 @@ class GltfFlattener {
         // An attribute with no elements counts as absent.
         const int nAcc = nonEmpty(attribute(prim, "NORMAL"));
         const int tAcc = nonEmpty(attribute(prim, "TEXCOORD_0"));
+        const int tanAcc = nonEmpty(attribute(prim, "TANGENT"));
         const std::size_t count = accessors_.count(posAccessor);
         // Compared before reading: neither is read when it claims more than POSITION.
         if (nAcc >= 0 && accessors_.count(nAcc) != count)
             throw SceneError::atPath(path_, where, "NORMAL count differs from POSITION");
         if (tAcc >= 0 && accessors_.count(tAcc) != count)
             throw SceneError::atPath(path_, where, "TEXCOORD_0 count differs from POSITION");
+        if (tanAcc >= 0 && accessors_.count(tanAcc) != count)
+            throw SceneError::atPath(path_, where, "TANGENT count differs from POSITION");
         chargeGeometry(prim, mode, count, nAcc < 0, where);
 
         const std::vector<float> pos = accessors_.floats(posAccessor, TINYGLTF_TYPE_VEC3);
@@ -749,7 +763,8 @@ class GltfFlattener {
         }
         Attributes attr{
             pos, nAcc >= 0 ? accessors_.floats(nAcc, TINYGLTF_TYPE_VEC3) : std::vector<float>(),
-            tAcc >= 0 ? accessors_.floats(tAcc, TINYGLTF_TYPE_VEC2) : std::vector<float>()};
+            tAcc >= 0 ? accessors_.floats(tAcc, TINYGLTF_TYPE_VEC2) : std::vector<float>(),
+            tanAcc >= 0 ? accessors_.floats(tanAcc, TINYGLTF_TYPE_VEC4) : std::vector<float>()};
         emit(assembleTriangles(mode, idx), attr, world, materialId(prim.material));
     }
 
@@ -772,11 +787,13 @@ class GltfFlattener {
     }
 
     struct Attributes {
-        std::vector<float> positions, normals, uvs;
+        std::vector<float> positions, normals, uvs, tangents;
     };
 
     // Appends the triangles, transformed to the file's space. A primitive without normals in a
-    // mesh that has them is flat-shaded (glTF's rule): its triangles get vertices of their own.
+    // mesh that has them is flat-shaded (glTF's rule): its triangles get vertices of their own,
+    // and no tangents (the specification ignores them without normals). A vertex without a
+    // tangent, in a mesh that has some, gets (0, 0, 0, 0): its frame comes from the uvs.
     void emit(const std::vector<glm::uvec3>& tris, const Attributes& a, const glm::dmat4& world,
               std::uint32_t material) {
         const glm::mat4 m(world);
@@ -796,6 +813,8 @@ class GltfFlattener {
                 const float len = glm::length(n);
                 mesh_.normals.push_back(len > 0.0f && std::isfinite(len) ? n / len : flatNormal);
             }
+            if (withTangents_)
+                mesh_.tangents.push_back(flat ? glm::vec4(0.0f) : tangent(a, i, m, flip));
             // glTF's v runs down the image, igi's (OBJ's) up.
             if (withUvs_)
                 mesh_.uvs.push_back(a.uvs.empty()
@@ -820,6 +839,20 @@ class GltfFlattener {
         }
     }
 
+    // A tangent is a direction in the surface: it goes by the matrix (not the normal matrix).
+    // The bitangent, cross(normal, tangent) * w, must be the image of the file's: where the
+    // matrix mirrors, cross(M n, M t) is minus the image of cross(n, t), so w changes sign.
+    static glm::vec4 tangent(const Attributes& a, std::uint32_t i, const glm::mat4& m, bool flip) {
+        if (a.tangents.empty()) return glm::vec4(0.0f);
+        const glm::vec3 t = glm::mat3(m) * glm::vec3(a.tangents[4 * i], a.tangents[4 * i + 1],
+                                                     a.tangents[4 * i + 2]);
+        const float w = a.tangents[4 * i + 3];
+        const float len = glm::length(t);
+        if (!(len > 0.0f) || !std::isfinite(len) || !std::isfinite(w)) return glm::vec4(0.0f);
+        const float sign = (w < 0.0f) != flip ? -1.0f : 1.0f;
+        return glm::vec4(t / len, sign);
+    }
+
     static glm::vec3 faceNormal(const Attributes& a, glm::uvec3 t, const glm::mat4& m, bool flip) {
         auto p = [&](std::uint32_t i) {
             return glm::vec3(m * glm::vec4(a.positions[3 * i], a.positions[3 * i + 1],
@@ -841,6 +874,7 @@ class GltfFlattener {
     std::vector<bool> visited_;
     bool withNormals_ = false;
     bool withUvs_ = false;
+    bool withTangents_ = false;
     std::optional<std::uint32_t> defaultId_;
 };
 

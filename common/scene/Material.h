@@ -41,6 +41,11 @@ struct Material {
     float roughness = 1.0f;         ///< Reflection::Ggx: perceptual roughness in [0, 1]
     float metallic = 0.0f;          ///< Reflection::Ggx: in [0, 1]
     int metallicRoughnessTexture = -1;  ///< linear: green scales roughness, blue metallic
+    /// A tangent-space normal map (glTF normalTexture, linear, OpenGL convention: green toward
+    /// +v), or -1. The shading normal is the frame of the tangent, bitangent and interpolated
+    /// normal applied to (2 texel - 1) with x and y scaled by `normalScale` (client/NormalMap.h).
+    int normalTexture = -1;
+    float normalScale = 1.0f;  ///< glTF normalTexture.scale
 
     bool operator==(const Material&) const = default;
 

@@ -6,6 +6,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "scene/Transform.h"
 
@@ -19,6 +20,10 @@ struct Mesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;  ///< empty, or one per position
     std::vector<glm::vec2> uvs;      ///< empty, or one per position
+    /// Empty, or one per position (glTF TANGENT): xyz the unit tangent toward +u, w the sign of
+    /// the bitangent, cross(normal, tangent) * w, which points toward +v (igi's v, up in the
+    /// image). Without them, normal maps take the tangent frame from each triangle's uvs.
+    std::vector<glm::vec4> tangents;
     std::vector<glm::uvec3> triangles;
     std::vector<std::uint32_t> materialIds;  ///< one per triangle, index into Scene::materials
     Transform transform;

@@ -40,6 +40,9 @@ void apply(SceneState& s, const SceneChange& change) {
                 // Textures are the scene's files, which no change carries.
                 value.diffuseTexture = s.materials[c.material].diffuseTexture;
                 value.metallicRoughnessTexture = s.materials[c.material].metallicRoughnessTexture;
+                // So is the normal map, and its scale with it.
+                value.normalTexture = s.materials[c.material].normalTexture;
+                value.normalScale = s.materials[c.material].normalScale;
                 s.materials[c.material] = value;
             }
         },
