@@ -56,14 +56,21 @@ inline glm::vec3 schlick(glm::vec3 f0, float cosVH) {
     return f0 + (glm::vec3(1.0f) - f0) * (m2 * m2 * m);
 }
 
+/// The half vector of wi and wo, or false when they are opposite.
+inline bool halfVector(glm::vec3 wi, glm::vec3 wo, glm::vec3& h) {
+    const glm::vec3 sum = wi + wo;
+    const float len = glm::length(sum);
+    if (!(len > 0)) return false;
+    h = sum / len;
+    return true;
+}
+
 /// f(wi, wo) of the lobe about `normal`; zero unless both directions are above it.
 inline glm::vec3 evaluate(float alpha, glm::vec3 f0, glm::vec3 normal, glm::vec3 wi, glm::vec3 wo) {
     const float cosI = glm::dot(normal, wi), cosO = glm::dot(normal, wo);
     if (cosI <= 0 || cosO <= 0) return glm::vec3(0.0f);
-    const glm::vec3 sum = wi + wo;
-    const float len = glm::length(sum);
-    if (!(len > 0)) return glm::vec3(0.0f);
-    const glm::vec3 h = sum / len;
+    glm::vec3 h;
+    if (!halfVector(wi, wo, h)) return glm::vec3(0.0f);
     return schlick(f0, glm::dot(wo, h)) *
            (distribution(alpha, glm::dot(normal, h)) * visibility(alpha, cosI, cosO));
 }
@@ -72,10 +79,8 @@ inline glm::vec3 evaluate(float alpha, glm::vec3 f0, glm::vec3 normal, glm::vec3
 inline float pdf(float alpha, glm::vec3 normal, glm::vec3 wi, glm::vec3 wo) {
     const float cosI = glm::dot(normal, wi), cosO = glm::dot(normal, wo);
     if (cosI <= 0 || cosO <= 0) return 0.0f;
-    const glm::vec3 sum = wi + wo;
-    const float len = glm::length(sum);
-    if (!(len > 0)) return 0.0f;
-    const glm::vec3 h = sum / len;
+    glm::vec3 h;
+    if (!halfVector(wi, wo, h)) return 0.0f;
     return maskingG1(alpha, cosO) * distribution(alpha, glm::dot(normal, h)) / (4.0f * cosO);
 }
 
@@ -120,11 +125,9 @@ inline float maxSharpness(float alpha) {
 inline float sharpness(float alpha, glm::vec3 normal, glm::vec3 wi, glm::vec3 wo) {
     const float cosI = glm::dot(normal, wi), cosO = glm::dot(normal, wo);
     if (cosI <= 0 || cosO <= 0) return 0.0f;
-    const glm::vec3 sum = wi + wo;
-    const float len = glm::length(sum);
-    if (!(len > 0)) return 0.0f;
-    const float s =
-        kPi * distribution(alpha, glm::dot(normal, sum / len)) * visibility(alpha, cosI, cosO);
+    glm::vec3 h;
+    if (!halfVector(wi, wo, h)) return 0.0f;
+    const float s = kPi * distribution(alpha, glm::dot(normal, h)) * visibility(alpha, cosI, cosO);
     return std::min(s, maxSharpness(alpha));
 }
 

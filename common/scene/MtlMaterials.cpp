@@ -161,7 +161,9 @@ Material defaultMaterial() {
 void conserveEnergy(Material& m, const std::string& where) {
     if (m.glass) return;
     const glm::vec3 total =
-        m.diffuse + (m.reflection == Reflection::None ? glm::vec3(0.0f) : m.specular);
+        m.diffuse + (m.reflection == Reflection::None || m.reflection == Reflection::Ggx
+                         ? glm::vec3(0.0f)
+                         : m.specular);  // GGX's f0 comes from metallic and ior, not specular
     const float peak = maxComponent(total);
     if (peak <= 1.0f) return;
     spdlog::warn("{}: diffuse + specular reflects {:.3g} > 1 of the light: scaled down", where,
