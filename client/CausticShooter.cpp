@@ -119,6 +119,29 @@ bool CausticShooter::samplePhotonDirection(glm::vec3 origin, float uTarget, glm:
     return pdf > 0;
 }
 
+bool CausticShooter::sampleParallelOrigin(glm::vec3 direction, float uTarget, glm::vec2 u,
+                                          glm::vec3& origin, float& pdf) const {
+    const auto index =
+        std::min<std::size_t>(std::size_t(uTarget * targets_.size()), targets_.size() - 1);
+    const Target& t = targets_[index];
+    const Frame frame(direction);
+    const glm::vec2 d = squareToUniformDisk(u) * t.radius;
+    // Back along the light to the plane just outside the scene's bounding sphere.
+    const float back =
+        glm::dot(t.center - scene_.center(), direction) + 0.5005f * scene_.diagonal();
+    origin = t.center + frame.toWorld({d.x, d.y, -back});
+    double density = 0;
+    for (const Target& other : targets_) {
+        const glm::vec3 offset = origin - other.center;
+        const float along = glm::dot(offset, direction);
+        const glm::vec3 across = offset - along * direction;
+        if (glm::dot(across, across) <= other.radius * other.radius)
+            density += 1.0 / (double(kPi) * double(other.radius) * double(other.radius));
+    }
+    pdf = float(density / double(targets_.size()));
+    return pdf > 0;
+}
+
 std::vector<CausticPhoton> CausticShooter::shoot(std::uint32_t frame, std::uint32_t setIndex,
                                                  std::uint32_t& shot, RayCounters& counters) const {
     std::vector<CausticPhoton> photons;
@@ -131,6 +154,18 @@ std::vector<CausticPhoton> CausticShooter::shoot(std::uint32_t frame, std::uint3
         float uTarget = 0;
         const LightSample light = lights_.sample(
             sampler.emission(j, 0), {sampler.emission(j, 1), sampler.emission(j, 2)}, &uTarget);
+        if (light.directional) {
+            // Parallel light: aimed by where it starts, on the targets' shadows.
+            glm::vec3 origin;
+            float pdfArea = 0;
+            if (!sampleParallelOrigin(light.direction, uTarget,
+                                      {sampler.emission(j, 3), sampler.emission(j, 4)}, origin,
+                                      pdfArea))
+                continue;
+            const glm::vec3 power = light.irradiance / (light.pdf * pdfArea * float(photons_));
+            trace(origin, light.direction, power, j, sampler, photons, counters);
+            continue;
+        }
         glm::vec3 direction;
         float pdfDirection = 0;
         if (!samplePhotonDirection(light.position, uTarget,
@@ -140,7 +175,11 @@ std::vector<CausticPhoton> CausticShooter::shoot(std::uint32_t frame, std::uint3
         glm::vec3 power;
         glm::vec3 origin = light.position;
         if (light.isPoint) {
-            power = light.emitted / (light.pdf * pdfDirection * float(photons_));
+            const float ramp = light.spot ? spotRamp(light.cosOuter, light.spotScale,
+                                                     glm::dot(direction, light.normal))
+                                          : 1.0f;
+            if (!(ramp > 0)) continue;
+            power = light.emitted * ramp / (light.pdf * pdfDirection * float(photons_));
         } else {
             const float cosLight = glm::dot(direction, light.normal);
             if (cosLight <= 0) continue;  // area lights emit on their front side only

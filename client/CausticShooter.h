@@ -49,6 +49,11 @@ class CausticShooter {
     float directionPdf(glm::vec3 origin, glm::vec3 direction) const;
     bool samplePhotonDirection(glm::vec3 origin, float uTarget, glm::vec2 u, glm::vec3& direction,
                                float& pdf) const;
+    /// For parallel light along unit `direction`: a start on the disk that a chosen target's
+    /// sphere casts on the plane across `direction` just outside the scene, and the area
+    /// density of the target mixture there (the disks may overlap).
+    bool sampleParallelOrigin(glm::vec3 direction, float uTarget, glm::vec2 u, glm::vec3& origin,
+                              float& pdf) const;
     void trace(glm::vec3 origin, glm::vec3 direction, glm::vec3 power, std::uint32_t path,
                const class LightPathSampler& sampler, std::vector<CausticPhoton>& out,
                RayCounters& counters) const;

@@ -41,7 +41,7 @@ std::optional<Link> linkTo(const Vpl& v, glm::vec3 origin, glm::vec3 n, glm::vec
     const glm::vec3 w = toLight / d;
     const float cosX = glm::dot(n, w);
     if (cosX <= 0 || glm::dot(f, w) <= 0) return std::nullopt;
-    const float cosY = v.omni ? 1.0f : -glm::dot(v.normal, w);
+    const float cosY = v.emittingCosine(w);
     if (cosY <= 0) return std::nullopt;
     return Link{w, d, d2, cosX, cosY};
 }

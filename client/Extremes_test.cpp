@@ -86,7 +86,7 @@ Scene closedSphere(float albedo) {
     Scene scene;
     scene.materials.push_back(testing::diffuse(glm::vec3(albedo)));
     scene.meshes.push_back(testing::makeIcosphere(5, 1.0f, glm::vec3(0), 0));
-    scene.pointLights.push_back({"centre", glm::vec3(0), glm::vec3(1.0f)});
+    scene.punctualLights.push_back(pointLight("centre", glm::vec3(0), glm::vec3(1.0f)));
     scene.camera = {glm::vec3(0), glm::vec3(1, 0.2f, 0.1f), glm::vec3(0, 1, 0), 70};
     scene.image = {16, 12, 0};
     scene.render.maxLightPathLength = 64;
@@ -105,7 +105,7 @@ Scene facingPlane(int width, int height, float fovYDeg) {
     scene.meshes.push_back(
         testing::makeQuad({-20, -20, 0}, {40, 0, 0}, {0, 40, 0}, 0));  // faces +z
     const glm::vec3 eye(0, 0, kPlaneDistance);
-    scene.pointLights.push_back({"at the eye", eye, glm::vec3(kPlaneIntensity)});
+    scene.punctualLights.push_back(pointLight("at the eye", eye, glm::vec3(kPlaneIntensity)));
     scene.camera = {eye, glm::vec3(0), glm::vec3(0, 1, 0), fovYDeg};
     scene.image = {width, height, 0};
     scene.render.causticPhotons = 0;
@@ -255,7 +255,7 @@ TEST_P(LightIntensity, From1eMinus6To1e6TheDisplayedImageMatchesWithinOneCode) {
     auto sceneWith = [&](float s) {
         Scene scene = c.glossy ? glossyCornellBox(1.0f) : testing::cornellBox(1.0f, true);
         scene.quadLights[0].radiance *= s;
-        scene.pointLights[0].intensity *= s;
+        scene.punctualLights[0].intensity *= s;
         return scene;
     };
     const Scene base = sceneWith(1.0f);
@@ -447,7 +447,8 @@ TEST_P(GrazingView, AFloorSeenEdgeOnHasItsAnalyticRadiance) {
     scene.materials.push_back(testing::diffuse(glm::vec3(kAlbedo)));
     scene.meshes.push_back(testing::makeQuad({-kHalf, 0, -kHalf}, {0, 0, 2 * kHalf},
                                              {2 * kHalf, 0, 0}, 0));  // faces +y
-    scene.pointLights.push_back({"above", {0, kLightHeight, 0}, glm::vec3(kIntensity)});
+    scene.punctualLights.push_back(
+        pointLight("above", {0, kLightHeight, 0}, glm::vec3(kIntensity)));
     const glm::vec3 eye(0, c.eyeHeight, 0);
     const double angle = c.eyeHeight / 30.0;  // of the view's centre below the horizon
     const float fov = float(2.0 * std::atan(angle / 10.0) * 180.0 / 3.14159265358979);
@@ -648,12 +649,12 @@ TEST_P(TinyMirror, ReflectsThePowerItsSolidAngleReceives) {
     scene.meshes.push_back(room);
     // The mirror in the plane x = 1, facing -x (toward the light at the origin).
     scene.meshes.push_back(testing::makeQuad({1, -a / 2, -a / 2}, {0, 0, a}, {0, a, 0}, 1));
-    scene.pointLights.push_back({"light", glm::vec3(0), glm::vec3(1.0f)});
+    scene.punctualLights.push_back(pointLight("light", glm::vec3(0), glm::vec3(1.0f)));
     scene.render.causticPhotons = 20000;
     EmbreeDevice device;
     SceneGeometry geometry(device, scene);
     TraceableScene traceable(geometry);
-    Lights lights(traceable, scene.pointLights);
+    Lights lights(traceable, scene.punctualLights);
     CausticShooter shooter(traceable, lights, scene.render);
     ASSERT_TRUE(shooter.active());
     double power = 0;
@@ -733,7 +734,7 @@ TEST_P(DegenerateTriangles, ChangeNothing) {
     EmbreeDevice device;
     SceneGeometry g0(device, base), g1(device, degenerate);
     TraceableScene t0(g0), t1(g1);
-    const Lights l0(t0, base.pointLights), l1(t1, degenerate.pointLights);
+    const Lights l0(t0, base.punctualLights), l1(t1, degenerate.punctualLights);
     EXPECT_EQ(l1.count(), l0.count()) << "an emissive triangle of zero area became a light";
     EXPECT_DOUBLE_EQ(l1.totalPower(), l0.totalPower());
     EXPECT_FLOAT_EQ(t1.diagonal(), t0.diagonal());

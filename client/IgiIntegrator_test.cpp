@@ -23,8 +23,8 @@ Scene closedSphere(float radius, float albedo) {
     Scene scene;
     scene.materials.push_back(testing::diffuse(glm::vec3(albedo)));
     scene.meshes.push_back(testing::makeIcosphere(5, radius, glm::vec3(0), 0));
-    scene.pointLights.push_back(
-        {"centre", glm::vec3(0), glm::vec3(radius * radius)});  // I / R^2 = 1
+    scene.punctualLights.push_back(
+        pointLight("centre", glm::vec3(0), glm::vec3(radius * radius)));  // I / R^2 = 1
     scene.camera = {glm::vec3(0), glm::vec3(1, 0.2f, 0.1f), glm::vec3(0, 1, 0), 70};
     scene.image = {24, 18, 0};
     scene.render.maxLightPathLength = 64;  // the analytic answer sums every bounce
@@ -153,7 +153,7 @@ TEST(IgiIntegrator, APixelShadedWithOthersIsThePixelShadedAlone) {
 // give every pixel the same bits, for the area light's samples and the point light's alike.
 TEST(IgiIntegrator, ConnectionsInLanesGiveTheBitsOfConnectionsOneAtATime) {
     Scene scene = testing::cornellBox(1.0f);
-    ASSERT_FALSE(scene.pointLights.empty());
+    ASSERT_FALSE(scene.punctualLights.empty());
     scene.image = {40, 30, 0};
     InProcessRenderer renderer(scene);
     TileRenderer& tiles = renderer.renderer();

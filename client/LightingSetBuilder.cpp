@@ -275,7 +275,19 @@ void LightingSetBuilder::traceLightPaths(const LightPathNumbers& sampler, PathEn
         if (!(light.pdf > 0)) continue;
         const glm::vec2 uDir(sampler.emission(j, 3), sampler.emission(j, 4));
         glm::vec3 origin, direction, beta;  // beta: the flux the path carries
-        if (light.isPoint) {
+        if (light.directional) {
+            // Parallel light through the disk across the scene's bounding sphere.
+            direction = light.direction;
+            origin = lights_.diskOrigin(direction, uDir);
+            beta = light.irradiance * lights_.diskArea() / light.pdf;
+        } else if (light.spot) {
+            // Uniform in the outer cone, weighted by the ramp.
+            direction = Frame(light.normal).toWorld(squareToUniformCone(uDir, light.cosOuter));
+            const float ramp =
+                spotRamp(light.cosOuter, light.spotScale, glm::dot(direction, light.normal));
+            origin = light.position;
+            beta = light.emitted * (ramp / (uniformConePdf(light.cosOuter) * light.pdf));
+        } else if (light.isPoint) {
             origin = light.position;
             direction = squareToUniformSphere(uDir);
             beta = light.emitted * (4.0f * kPi) / light.pdf;

@@ -18,7 +18,7 @@ Scene diffuseRoomWithPointLight() {
     Scene scene;
     scene.materials.push_back(testing::diffuse(glm::vec3(0.6f)));
     scene.meshes.push_back(testing::makeIcosphere(2, 3.0f, glm::vec3(0), 0));
-    scene.pointLights.push_back({"lamp", glm::vec3(0, 1, 0), glm::vec3(5)});
+    scene.punctualLights.push_back(pointLight("lamp", glm::vec3(0, 1, 0), glm::vec3(5)));
     scene.camera = {glm::vec3(0, 0, 2), glm::vec3(0), glm::vec3(0, 1, 0), 60};
     scene.image = {16, 16, 0};
     return scene;
@@ -149,7 +149,8 @@ TEST(LightingSetBuilder, CausticPowerMatchesTheAnalyticFluxThroughAMirror) {
                                              glm::vec3(0, 0, 2 * half), glm::vec3(2 * half, 0, 0),
                                              1));
     const float intensity = 3.0f;
-    scene.pointLights.push_back({"lamp", glm::vec3(0, height, 0), glm::vec3(intensity)});
+    scene.punctualLights.push_back(
+        pointLight("lamp", glm::vec3(0, height, 0), glm::vec3(intensity)));
     scene.render.causticPhotons = 20000;
     scene.render.indirectCausticPhotons = 0;  // only the light's photons
     scene.image = {8, 8, 0};

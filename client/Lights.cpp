@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "math/Color.h"
+#include "math/Frame.h"
 #include "math/Warp.h"
 
 namespace igi {
@@ -35,7 +36,7 @@ Corners cornersOf(const TraceableScene::WorldTriangle& t) {
 
 }  // namespace
 
-Lights::Lights(const TraceableScene& traceable, const std::vector<PointLight>& pointLights,
+Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>& punctualLights,
                LightSampling sampling) {
     std::vector<float> power;
     // A face listed twice (duplicated in its file) is one surface, seen once: it must be one
@@ -63,14 +64,53 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PointLight>& p
         emitters_.push_back(e);
         power.push_back(kPi * e.area * luminance(e.emitted));  // one-sided Lambertian emitter
     }
-    for (const PointLight& p : pointLights) {
+    center_ = traceable.center();
+    radius_ = 0.5f * traceable.diagonal();
+    const float sunDistance = kSunDistance * radius_;
+    std::vector<float> treePower = power;  // a directional light's is its far point's
+    std::size_t finite = emitters_.size();
+    for (const PunctualLight& p : punctualLights) {
         if (!p.on) continue;
         Emitter e;
         e.p0 = p.position;
         e.emitted = p.intensity;
-        e.isPoint = true;
+        e.normal = p.direction;
+        if (p.kind == LightKind::Point) {
+            e.kind = Kind::Point;
+            power.push_back(4.0f * kPi * luminance(p.intensity));
+            ++finite;
+        } else if (p.kind == LightKind::Spot) {
+            e.kind = Kind::Spot;
+            e.cosOuter = spotCosOuter(p);
+            e.spotScale = spotScale(p);
+            // At most the power of its outer cone at full intensity.
+            power.push_back(2.0f * kPi * (1.0f - e.cosOuter) * luminance(p.intensity));
+            ++finite;
+        } else {
+            e.kind = Kind::Directional;
+            const float half = 0.5f * glm::radians(p.angleDeg);
+            // 1 - cos from the sine, which keeps its digits for the real sun's 0.27 degrees.
+            e.oneMinusCos = 2.0f * std::sin(0.5f * half) * std::sin(0.5f * half);
+            // E = L pi sin^2(half), and a direction uniform in the cone estimates it as
+            // L * solid angle = E * 2 (1 - cos) / sin^2 = E * 2 / (1 + cos).
+            e.sunScale = 2.0f / (2.0f - e.oneMinusCos);
+            hasDirectional_ = true;
+            // What crosses the disk of the scene's bounding sphere.
+            power.push_back(kPi * radius_ * radius_ * luminance(p.intensity));
+        }
+        treePower.push_back(e.kind == Kind::Directional
+                                ? 4.0f * kPi * luminance(p.intensity) * sunDistance * sunDistance
+                                : power.back());
         emitters_.push_back(e);
-        power.push_back(4.0f * kPi * luminance(p.intensity));
+    }
+    // A sun of 1e5 lux beside a room's lamps would take nearly every light path (or the lamps
+    // every one of a dim sky's): when directional lights share the scene with others, half the
+    // choices are by power and half uniform over the lights, so none is starved.
+    if (hasDirectional_ && finite > 0) {
+        double total = 0;
+        for (float w : power) total += w;
+        if (total > 0)
+            for (float& w : power) w = float(0.5 * double(w) / total + 0.5 / double(power.size()));
     }
     distribution_ = Distribution1D(power);
     if (!usesLightTree(sampling, emitters_.size()) || distribution_.empty()) return;
@@ -78,11 +118,15 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PointLight>& p
     for (std::size_t i = 0; i < emitters_.size(); ++i) {
         const Emitter& e = emitters_[i];
         LightTree::Light& b = bounds[i];
-        b.lo = glm::min(e.p0, glm::min(e.p0 + e.e1, e.p0 + e.e2));
-        b.hi = glm::max(e.p0, glm::max(e.p0 + e.e1, e.p0 + e.e2));
+        // A directional light is its far point (LightSample) in every direction it may come
+        // from: the tree weighs it by the irradiance it gives, as a point light's.
+        const glm::vec3 p0 =
+            e.kind == Kind::Directional ? center_ - e.normal * (radius_ + sunDistance) : e.p0;
+        b.lo = glm::min(p0, glm::min(p0 + e.e1, p0 + e.e2));
+        b.hi = glm::max(p0, glm::max(p0 + e.e1, p0 + e.e2));
         b.normal = e.normal;
-        b.omni = e.isPoint;
-        b.power = power[i];
+        b.omni = e.isPoint();
+        b.power = treePower[i];
     }
     tree_ = LightTree(bounds);
 }
@@ -106,17 +150,48 @@ LightSample Lights::pointOn(std::size_t i, float select, glm::vec2 uPoint) const
     LightSample s;
     const Emitter& e = emitters_[i];
     s.emitted = e.emitted;
-    s.isPoint = e.isPoint;
-    if (e.isPoint) {
-        s.position = e.p0;
-        s.pdf = select;
+    s.isPoint = e.isPoint();
+    if (e.kind == Kind::Triangle) {
+        const glm::vec2 b = squareToUniformTriangle(uPoint);
+        s.position = e.p0 + b.x * e.e1 + b.y * e.e2;
+        s.normal = e.normal;
+        s.pdf = select / e.area;
         return s;
     }
-    const glm::vec2 b = squareToUniformTriangle(uPoint);
-    s.position = e.p0 + b.x * e.e1 + b.y * e.e2;
-    s.normal = e.normal;
-    s.pdf = select / e.area;
+    s.pdf = select;
+    s.position = e.p0;
+    if (e.kind == Kind::Spot) {
+        s.spot = true;
+        s.normal = e.normal;
+        s.cosOuter = e.cosOuter;
+        s.spotScale = e.spotScale;
+    } else if (e.kind == Kind::Directional) {
+        s.directional = true;
+        s.direction = e.normal;
+        if (e.oneMinusCos > 0) {
+            // Uniform in the disk's cone: cos = 1 - u (1 - cos max), its sine from 1 - cos.
+            const float c1 = uPoint.x * e.oneMinusCos;
+            const float sine = std::sqrt(std::max(0.0f, c1 * (2.0f - c1)));
+            const float phi = 2.0f * kPi * uPoint.y;
+            s.direction = glm::normalize(
+                Frame(e.normal).toWorld({sine * std::cos(phi), sine * std::sin(phi), 1.0f - c1}));
+        }
+        s.irradiance = e.emitted * e.sunScale;
+        const float distance = radius_ + kSunDistance * radius_;
+        s.position = center_ - s.direction * distance;
+        s.emitted = s.irradiance * (distance * distance);
+    }
     return s;
+}
+
+glm::vec3 Lights::diskOrigin(glm::vec3 direction, glm::vec2 u) const {
+    const glm::vec2 d = squareToUniformDisk(u);
+    // Just outside the sphere, so that nothing in the scene is behind the start.
+    return center_ + Frame(direction).toWorld({d.x * radius_, d.y * radius_, -1.001f * radius_});
+}
+
+float Lights::diskArea() const {
+    return kPi * radius_ * radius_;
 }
 
 float Lights::areaPdfAt(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p,
@@ -132,6 +207,9 @@ Vpl directLightVpl(const LightSample& s, const TraceableScene& scene, int sample
     Vpl v;
     v.omni = s.isPoint;
     v.normal = s.normal;
+    v.spot = s.spot;
+    v.spotCosOuter = s.cosOuter;
+    v.spotScale = s.spotScale;
     v.position = s.isPoint ? s.position : scene.offsetOrigin(s.position, s.normal);
     v.power = s.emitted / (s.pdf * float(samples));
     v.areaPdf = s.isPoint ? 0.0f : s.pdf;

@@ -17,13 +17,28 @@
 namespace igi {
 
 /// A point chosen on a light source.
+///
+/// A directional light's sample is a point light far outside the scene (kSunDistance radii
+/// beyond its bounding sphere, in the sampled direction) whose intensity gives the sun's
+/// irradiance at the scene: every receiver connects to it as to a point light, with a parallax
+/// and a 1/d^2 variation across the scene below 2e-5. Light paths leave it from the disk
+/// across the scene's bounding sphere instead (Lights::diskOrigin), along `direction`.
 struct LightSample {
     glm::vec3 position{0.0f};
-    glm::vec3 normal{0.0f};   ///< emitting side of an area light; unused for a point light
+    glm::vec3 normal{0.0f};   ///< emitting side of an area light; a spot light's axis
     glm::vec3 emitted{0.0f};  ///< radiance of an area light, intensity (W/sr) of a point light
+                              ///< (on the axis for a spot)
     float pdf = 0;            ///< selection probability times 1/area (area lights), or selection
-    bool isPoint = false;
+    bool isPoint = false;     ///< point, spot or directional: a delta position
+    bool spot = false;        ///< emitted times spotRamp(cosOuter, spotScale, cos to the axis)
+    float cosOuter = -1.0f, spotScale = 0.0f;
+    bool directional = false;
+    glm::vec3 direction{0.0f};   ///< directional: the way its light travels, as sampled
+    glm::vec3 irradiance{0.0f};  ///< directional: on a plane facing `direction`
 };
+
+/// How far (in scene radii) past the scene a directional light's sample sits.
+constexpr float kSunDistance = 1e5f;
 
 /// Every light source of a scene: emissive triangles (from Ke materials and quad lights; zero-area
 /// ones skipped, a face listed twice counted once) and point lights. Light paths leave them by
@@ -35,7 +50,7 @@ class Lights {
     /// The emissive triangles of `traceable` (quad lights included) and the point lights that
     /// are on; `sampling` says how a receiving point chooses among them (Auto: the tree from
     /// kLightTreeMinLights lights on).
-    Lights(const TraceableScene& traceable, const std::vector<PointLight>& pointLights,
+    Lights(const TraceableScene& traceable, const std::vector<PunctualLight>& punctualLights,
            LightSampling sampling = LightSampling::Power);
 
     bool empty() const { return distribution_.empty(); }
@@ -59,14 +74,28 @@ class Lights {
 
     /// Total emitted power, summed luminance (for tests and statistics).
     double totalPower() const { return distribution_.total(); }
+    /// Whether some light is directional (light paths then start on diskOrigin's disk).
+    bool hasDirectional() const { return hasDirectional_; }
+
+    /// Where a light path of a directional light travelling along unit `direction` starts: a
+    /// point, uniform by u, on the disk of the scene's bounding sphere's radius that faces
+    /// `direction`, just outside the sphere. Its area is diskArea().
+    glm::vec3 diskOrigin(glm::vec3 direction, glm::vec2 u) const;
+    float diskArea() const;
 
   private:
+    enum class Kind : std::uint8_t { Triangle, Point, Spot, Directional };
     struct Emitter {
         glm::vec3 p0{0.0f}, e1{0.0f}, e2{0.0f};  ///< triangle p0, p0+e1, p0+e2, or the point
-        glm::vec3 normal{0.0f};
-        glm::vec3 emitted{0.0f};
+        glm::vec3 normal{0.0f};   ///< a triangle's; a spot's axis; a directional light's direction
+        glm::vec3 emitted{0.0f};  ///< radiance, intensity or (directional) irradiance
         float area = 0;
-        bool isPoint = false;
+        Kind kind = Kind::Triangle;
+        float cosOuter = -1.0f, spotScale = 0.0f;  ///< spot: spotRamp's parameters
+        /// Directional: 1 - cos of the disk's half-angle (0: a delta), and the factor from
+        /// the irradiance to the estimate of one direction sampled uniformly in that cone.
+        float oneMinusCos = 0.0f, sunScale = 1.0f;
+        bool isPoint() const { return kind != Kind::Triangle; }
     };
 
     LightSample pointOn(std::size_t emitter, float selection, glm::vec2 uPoint) const;
@@ -75,6 +104,9 @@ class Lights {
     Distribution1D distribution_;
     LightTree tree_;  ///< empty when receivers choose by power
     std::unordered_map<std::uint64_t, std::uint32_t> triangleToEmitter_;
+    glm::vec3 center_{0.0f};  ///< the scene's bounding sphere
+    float radius_ = 1.0f;
+    bool hasDirectional_ = false;
 };
 
 /// A light sample as the point light that one of `samples` direct-light shadow rays goes to: its

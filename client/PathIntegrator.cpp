@@ -116,14 +116,16 @@ glm::vec3 PathIntegrator::directLight(const SurfacePoint& hit, const Lobes& lobe
     const glm::vec3 w = toLight / d;
     const SurfaceBrdf& b = lobes.brdf;
     const float cosX = glm::dot(w, b.normal);
-    const float cosY = ls.isPoint ? 1.0f : -glm::dot(w, ls.normal);
+    const float cosY = !ls.isPoint ? -glm::dot(w, ls.normal)
+                       : ls.spot   ? spotRamp(ls.cosOuter, ls.spotScale, -glm::dot(w, ls.normal))
+                                   : 1.0f;
     if (cosX <= 0 || cosY <= 0 || glm::dot(w, lobes.faceNormal) <= 0) return glm::vec3(0.0f);
     const glm::vec3 target = ls.isPoint ? ls.position : scene_.offsetOrigin(ls.position, ls.normal);
     const float distance = glm::length(target - shadowOrigin);
     if (scene_.occluded(shadowOrigin, w, distance * (1.0f - 1e-4f), counters))
         return glm::vec3(0.0f);
     const glm::vec3 f = b.diffuse() + b.glossy(w);
-    if (ls.isPoint) return f * ls.emitted * (cosX / (d2 * ls.pdf));
+    if (ls.isPoint) return f * ls.emitted * (cosX * cosY / (d2 * ls.pdf));
     const float lightPdf = ls.pdf * d2 / cosY;  // solid angle
     const float weight = powerHeuristic(lightPdf, b.pdf(w));
     return f * ls.emitted * (cosX * weight / lightPdf);

@@ -84,7 +84,7 @@ TEST(PhotonEmission, ADimmedLightRetracesEveryGroup) {
     SceneState dimmed = still;
     // Every light at half: each photon leaves from where it did, with half the power.
     for (auto& l : dimmed.quadLights) l.radiance *= 0.5f;
-    for (auto& l : dimmed.pointLights) l.intensity *= 0.5f;
+    for (auto& l : dimmed.punctualLights) l.intensity *= 0.5f;
     const auto after = client.begin(dimmed, 10).emissionAt(10);
     EXPECT_EQ(after->update().traced, 64u);
     const auto a = before->hits(), b = after->hits();

@@ -135,8 +135,8 @@ inline Scene cornellBox(float scale, bool glassBall = false) {
     light.edge2 = s * glm::vec3(0, 0, 0.3f);  // cross(edge1, edge2) points down
     light.radiance = glm::vec3(8.0f);
     scene.quadLights.push_back(light);
-    scene.pointLights.push_back(
-        {"fill", s * glm::vec3(0.2f, 0.8f, 0.75f), glm::vec3(0.3f * s * s)});
+    scene.punctualLights.push_back(
+        pointLight("fill", s * glm::vec3(0.2f, 0.8f, 0.75f), glm::vec3(0.3f * s * s)));
     scene.camera = {s * glm::vec3(0.5f, 0.5f, 1.9f), s * glm::vec3(0.5f, 0.5f, 0.0f),
                     glm::vec3(0, 1, 0), 40};
     scene.image = {48, 36, 0};

@@ -117,13 +117,14 @@ TraceableScene::TraceableScene(const SceneGeometry& geometry, const SceneState& 
     else
         top_ = geometry.flatScene(state);
 
-    const glm::vec3 extent = placedBoundsExtent();
-    const float d = glm::length(extent);
+    const auto [lo, hi] = placedBounds();
+    const float d = glm::length(hi - lo);
     diagonal_ = std::isfinite(d) && d > 0 ? d : 1.0f;
+    center_ = std::isfinite(d) ? 0.5f * (lo + hi) : glm::vec3(0.0f);
     computeMeanAlbedo(scene.textures);
 }
 
-glm::vec3 TraceableScene::placedBoundsExtent() const {
+std::pair<glm::vec3, glm::vec3> TraceableScene::placedBounds() const {
     // Each object's own bounds placed by its transform (the box around their eight placed
     // corners), as Embree bounds an instance: the same in both layouts, so the scale and
     // everything set relative to it (ray offsets, the clamp) do not depend on the layout.
@@ -143,7 +144,7 @@ glm::vec3 TraceableScene::placedBoundsExtent() const {
             hi = glm::max(hi, p);
         }
     }
-    return hi - lo;
+    return {lo, hi};
 }
 
 TraceableScene::~TraceableScene() {

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <limits>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -113,6 +114,9 @@ class TraceableScene {
     /// The scene's scale: the diagonal of its bounds. Clamping and photon radii are fractions
     /// of it, so they mean the same at every scale.
     float diagonal() const { return diagonal_; }
+    /// The centre of the scene's bounds: with diagonal() / 2 as radius, a sphere around it all
+    /// (the disk that light from infinitely far away enters through).
+    glm::vec3 center() const { return center_; }
     /// Area-weighted mean Lambertian albedo of the diffuse surfaces (the fraction of light paths
     /// continued at each diffuse bounce in the quasi-random walk).
     float meanAlbedo() const { return meanAlbedo_; }
@@ -148,7 +152,8 @@ class TraceableScene {
     void applyNormalMap(const MeshData& m, glm::uvec3 t, float u, float v, glm::vec3 n,
                         SurfacePoint& hit) const;
     std::vector<WorldTriangle> trianglesWhere(bool (*predicate)(const Material&)) const;
-    glm::vec3 placedBoundsExtent() const;
+    /// The box (lowest, highest corner) around every object's bounds as placed.
+    std::pair<glm::vec3, glm::vec3> placedBounds() const;
     void computeMeanAlbedo(const std::vector<Texture>& textures);
 
     const SceneGeometry& geometry_;
@@ -159,6 +164,7 @@ class TraceableScene {
     SceneLayout layout_ = SceneLayout::Flat;
     RTCScene top_ = nullptr;
     float diagonal_ = 1.0f;
+    glm::vec3 center_{0.0f};
     float meanAlbedo_ = 0.5f;
     std::uint64_t triangleCount_ = 0;
     int packetWidth_ = 8;

@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 
 #include "Ggx.h"
+#include "scene/Light.h"
 
 namespace igi {
 
@@ -27,6 +28,10 @@ struct Vpl {
     glm::vec3 normal{0.0f};
     glm::vec3 power{0.0f};
     bool omni = false;
+    /// An omni light sample of a spot light: `normal` is its axis, and toward -w it sends
+    /// power times spotRamp(spotCosOuter, spotScale, cos to the axis).
+    bool spot = false;
+    float spotCosOuter = -1.0f, spotScale = 0.0f;
     bool ggx = false;  ///< a GGX lobe: `exponent` is its alpha (client/Ggx.h)
 
     // Indirect VPLs on glossy surfaces.
@@ -43,6 +48,12 @@ struct Vpl {
     float areaPdf = 0;
 
     bool glossy() const { return glossyShare > 0; }
+    /// The cosine factor at the VPL toward a receiver in the unit direction -w: cos(theta) from
+    /// its normal, 1 for a point light, the ramp for a spot.
+    float emittingCosine(glm::vec3 w) const {
+        if (!omni) return -glm::dot(normal, w);
+        return spot ? spotRamp(spotCosOuter, spotScale, -glm::dot(normal, w)) : 1.0f;
+    }
     /// GGX: the direction the light came from (mirror's image about the normal).
     glm::vec3 incoming() const { return 2.0f * glm::dot(normal, mirror) * normal - mirror; }
     bool operator==(const Vpl&) const = default;

@@ -161,14 +161,14 @@ T usableOr(T value, const T& fallback) {
 struct Animation::Tracks {
     std::optional<Track<Camera>> camera;
     std::vector<std::pair<std::uint32_t, Track<Transform>>> objects;
-    std::vector<std::pair<std::uint32_t, Track<PointLight>>> pointLights;
+    std::vector<std::pair<std::uint32_t, Track<PunctualLight>>> punctualLights;
     std::vector<std::pair<std::uint32_t, Track<QuadLight>>> quadLights;
     /// Every material of the name gets the same keys.
     std::vector<std::pair<std::vector<std::uint32_t>, Track<Material>>> materials;
     std::uint32_t lastKeyFrame = 0;
     bool empty = true;
     // The scene's shape, to refuse a base state of another scene.
-    std::size_t meshCount = 0, materialCount = 0, pointLightCount = 0, quadLightCount = 0;
+    std::size_t meshCount = 0, materialCount = 0, punctualLightCount = 0, quadLightCount = 0;
 
     template <typename T>
     void count(const Track<T>& track) {
@@ -211,7 +211,7 @@ Animation Animation::parse(const std::string& text, const std::string& fileName,
     auto tracks = std::make_shared<Tracks>();
     tracks->meshCount = base.transforms.size();
     tracks->materialCount = base.materials.size();
-    tracks->pointLightCount = base.pointLights.size();
+    tracks->punctualLightCount = base.punctualLights.size();
     tracks->quadLightCount = base.quadLights.size();
 
     if (auto camera = root.find("camera")) {
@@ -237,10 +237,10 @@ Animation Animation::parse(const std::string& text, const std::string& fileName,
                 tracks->count(track);
                 tracks->quadLights.emplace_back(light.index, std::move(track));
             } else {
-                Track<PointLight> track = parseTrack<PointLight>(keys);
-                track.checkEveryFrame(base.pointLights[light.index]);
+                Track<PunctualLight> track = parseTrack<PunctualLight>(keys);
+                track.checkEveryFrame(base.punctualLights[light.index]);
                 tracks->count(track);
-                tracks->pointLights.emplace_back(light.index, std::move(track));
+                tracks->punctualLights.emplace_back(light.index, std::move(track));
             }
         }
     }
@@ -272,7 +272,7 @@ SceneState Animation::stateAt(std::uint32_t frame, const SceneState& base) const
     const Tracks& t = *tracks_;
     if (t.empty) return base;
     if (base.transforms.size() != t.meshCount || base.materials.size() != t.materialCount ||
-        base.pointLights.size() != t.pointLightCount ||
+        base.punctualLights.size() != t.punctualLightCount ||
         base.quadLights.size() != t.quadLightCount) {
         throw std::invalid_argument("Animation::stateAt: a base state of another scene");
     }
@@ -281,8 +281,8 @@ SceneState Animation::stateAt(std::uint32_t frame, const SceneState& base) const
     for (const auto& [i, track] : t.objects) {
         s.transforms[i] = usableOr(track.valueAt(frame, base.transforms[i]), base.transforms[i]);
     }
-    for (const auto& [i, track] : t.pointLights)
-        s.pointLights[i] = track.valueAt(frame, base.pointLights[i]);
+    for (const auto& [i, track] : t.punctualLights)
+        s.punctualLights[i] = track.valueAt(frame, base.punctualLights[i]);
     for (const auto& [i, track] : t.quadLights) {
         s.quadLights[i] = usableOr(track.valueAt(frame, base.quadLights[i]), base.quadLights[i]);
     }

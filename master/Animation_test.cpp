@@ -40,8 +40,8 @@ Scene testScene() {
     s.materials[2].diffuseTexture = 0;
     s.materials[3].reflection = Reflection::Mirror;
     s.materials[3].specular = glm::vec3(0.9f);
-    s.pointLights = {PointLight{"lamp", {0, 1.5f, 1.5f}, glm::vec3(0.2f), true},
-                     PointLight{"dup", {0, 0, 0}, glm::vec3(1), true}};
+    s.punctualLights = {pointLight("lamp", {0, 1.5f, 1.5f}, glm::vec3(0.2f), true),
+                        pointLight("dup", {0, 0, 0}, glm::vec3(1), true)};
     s.quadLights = {QuadLight{"ceiling_light",
                               {-0.25f, 1.98f, -0.2f},
                               {0.5f, 0, 0},
@@ -143,8 +143,8 @@ TEST(Animation, BooleansAndMaterialTypesStep) {
     EXPECT_TRUE(stateAt(a, 40).quadLights[0].on);
     // Radiance is keyed at 0 and 40 only: it interpolates across the "on" keys.
     expectVec(stateAt(a, 20).quadLights[0].radiance, glm::vec3(15));
-    EXPECT_FALSE(stateAt(a, 0).pointLights[0].on);  // its only key, held before
-    EXPECT_TRUE(stateAt(a, 0).pointLights[1].on);   // another light of the scene
+    EXPECT_FALSE(stateAt(a, 0).punctualLights[0].on);  // its only key, held before
+    EXPECT_TRUE(stateAt(a, 0).punctualLights[1].on);   // another light of the scene
 
     const Material at9 = stateAt(a, 9).materials[1];
     EXPECT_EQ(at9.reflection, Reflection::Mirror);
@@ -186,8 +186,8 @@ TEST(Animation, MaterialsReflectingMoreThanAllTheLightAreScaledDown) {
 
 TEST(Animation, NamesResolveToTheSceneOrFailNamingThem) {
     const Animation a = parse(R"({"lights": {"lamp": [{"frame": 0, "intensity": 3}]}})");
-    EXPECT_EQ(stateAt(a, 0).pointLights[0].intensity, glm::vec3(3));
-    EXPECT_EQ(stateAt(a, 0).pointLights[1].intensity, glm::vec3(1));
+    EXPECT_EQ(stateAt(a, 0).punctualLights[0].intensity, glm::vec3(3));
+    EXPECT_EQ(stateAt(a, 0).punctualLights[1].intensity, glm::vec3(1));
 
     SceneError e = errorOf(R"({"objects": {"nope": [{"frame": 0, "scale": 2}]}})");
     EXPECT_EQ(e.jsonPath(), "/objects/nope");
@@ -254,7 +254,9 @@ TEST(Animation, ErrorsNameTheFileAndThePath) {
          "/lights/ceiling_light/0/intensity",
          "unknown key (expected one of: frame, corner, edge1, edge2, radiance, on)"},
         {R"({"lights": {"lamp": [{"frame": 0, "corner": [0, 0, 0]}]}})", "/lights/lamp/0/corner",
-         "unknown key (expected one of: frame, position, intensity, on)"},
+         "unknown key (expected one of: frame, position, intensity, irradiance, direction, "
+         "inner_deg, "
+         "outer_deg, angle_deg, on)"},
         {R"({"lights": {"ceiling_light": [{"frame": 0, "edge1": [0, 0, 0]}]}})",
          "/lights/ceiling_light/0/edge1", "edge is the zero vector"},
         {R"({"lights": {"ceiling_light": [{"frame": 0, "edge2": [1, 0, 0]}]}})",
@@ -356,7 +358,7 @@ TEST(Animation, EmptinessAndTheLastKeyFrame) {
     EXPECT_FALSE(a.empty());
     // A keyframe that sets nothing still counts for the length.
     EXPECT_EQ(a.lastKeyFrame(), 75u);
-    EXPECT_FALSE(stateAt(a, 80).pointLights[0].on);
+    EXPECT_FALSE(stateAt(a, 80).punctualLights[0].on);
 }
 
 TEST(Animation, RefusesABaseOfAnotherScene) {

@@ -51,8 +51,8 @@ SceneChange lightChange(const JsonNode& command, const Scene& scene, const Scene
         return QuadLightChange{light.index,
                                changed(command, current.quadLights.at(light.index), kNamedKeys)};
     }
-    return PointLightChange{light.index,
-                            changed(command, current.pointLights.at(light.index), kNamedKeys)};
+    return PunctualLightChange{light.index,
+                            changed(command, current.punctualLights.at(light.index), kNamedKeys)};
 }
 
 // Every material of the name changes; each keeps its own values for what is not given.

@@ -29,7 +29,7 @@ Scene testScene() {
     s.materials = {material("white", glm::vec3(0.7f)), material("red", {0.63f, 0.065f, 0.05f}),
                    material("white", glm::vec3(0.5f))};
     s.materials[2].diffuseTexture = 0;
-    s.pointLights = {PointLight{"lamp", {0, 1.5f, 1.5f}, glm::vec3(0.2f), true}};
+    s.punctualLights = {pointLight("lamp", {0, 1.5f, 1.5f}, glm::vec3(0.2f), true)};
     s.quadLights = {QuadLight{
         "ceiling_light", {-0.25f, 1.98f, -0.2f}, {0.5f, 0, 0}, {0, 0, 0.4f}, {17, 13.5f, 9}, true}};
     return s;
@@ -106,7 +106,7 @@ TEST(ControlCommand, LightsChangeByKind) {
     EXPECT_EQ(q.light, 0u);
     EXPECT_EQ(q.value, expected);  // radiance 4 from the current state
 
-    const PointLightChange p = only<PointLightChange>(
+    const PunctualLightChange p = only<PunctualLightChange>(
         parse(R"({"cmd":"light","name":"lamp","intensity":[1,2,3],"position":[0,2,0]})"));
     EXPECT_EQ(p.light, 0u);
     EXPECT_EQ(p.value.intensity, glm::vec3(1, 2, 3));
@@ -200,7 +200,8 @@ TEST(ControlCommand, BadCommandsAreClearErrors) {
         {R"({"cmd":"object","name":"room","scale":[1,0,1]})", "/scale", "scale must not be zero"},
         {R"({"cmd":"object","name":"room","frame":3,"scale":1})", "/frame", "unknown key"},
         {R"({"cmd":"light","name":"lamp","radiance":5})", "/radiance",
-         "unknown key (expected one of: cmd, name, position, intensity, on)"},
+         "unknown key (expected one of: cmd, name, position, intensity, irradiance, direction, "
+         "inner_deg, outer_deg, angle_deg, on)"},
         {R"({"cmd":"light","name":"ceiling_light","edge2":[0.5,0,0]})", "/edge2",
          "parallel to edge1"},
         {R"({"cmd":"light","name":"sun","on":true})", "/name", "no light named 'sun'"},

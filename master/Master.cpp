@@ -854,11 +854,17 @@ nlohmann::json Master::sceneJson() const {
     for (const QuadLight& l : state.quadLights)
         lights.push_back(
             {{"name", l.name}, {"type", "quad"}, {"on", l.on}, {"radiance", vec3Json(l.radiance)}});
-    for (const PointLight& l : state.pointLights)
-        lights.push_back({{"name", l.name},
-                          {"type", "point"},
-                          {"on", l.on},
-                          {"intensity", vec3Json(l.intensity)}});
+    for (const PunctualLight& l : state.punctualLights) {
+        const bool sun = l.kind == LightKind::Directional;
+        nlohmann::json light = {{"name", l.name},
+                                {"type", l.kind == LightKind::Point ? "point"
+                                         : sun                      ? "directional"
+                                                                    : "spot"},
+                                {"on", l.on},
+                                {sun ? "irradiance" : "intensity", vec3Json(l.intensity)}};
+        if (l.kind != LightKind::Point) light["direction"] = vec3Json(l.direction);
+        lights.push_back(std::move(light));
+    }
     return {{"objects", objects},
             {"lights", lights},
             {"camera", cameraJson(state.camera)},

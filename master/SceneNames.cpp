@@ -56,11 +56,11 @@ std::uint32_t SceneNames::mesh(const std::string& name, const JsonNode& where) c
 }
 
 SceneNames::LightRef SceneNames::light(const std::string& name, const JsonNode& where) const {
-    const std::vector<std::uint32_t> points = indicesOf(scene_.pointLights, name);
+    const std::vector<std::uint32_t> points = indicesOf(scene_.punctualLights, name);
     const std::vector<std::uint32_t> quads = indicesOf(scene_.quadLights, name);
     if (points.empty() && quads.empty()) {
         std::vector<std::string> all = namesOf(scene_.quadLights);
-        for (const std::string& n : namesOf(scene_.pointLights)) all.push_back(n);
+        for (const std::string& n : namesOf(scene_.punctualLights)) all.push_back(n);
         where.fail("no light named '" + name + "' (the scene's lights: " + listNames(all) + ")");
     }
     if (points.size() + quads.size() > 1) {

@@ -1,6 +1,7 @@
 #include "SceneProperties.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -59,8 +60,34 @@ std::optional<PropertyProblem> transformProblem(const Transform& t) {
     return std::nullopt;
 }
 
-std::optional<PropertyProblem> pointLightProblem(const PointLight&) {
+// As the scene loader's checks (LightsJson.cpp): cones that open, a sun no wider than a sky.
+std::optional<PropertyProblem> punctualLightProblem(const PunctualLight& l) {
+    if (!(l.outerDeg > 0.0f && l.outerDeg <= 90.0f))
+        return PropertyProblem{{"outer_deg"}, "outer_deg must be in (0, 90]"};
+    if (!(l.innerDeg >= 0.0f && l.innerDeg <= l.outerDeg))
+        return PropertyProblem{{"inner_deg", "outer_deg"}, "inner_deg exceeds outer_deg"};
     return std::nullopt;
+}
+
+// A light's direction: normalized, never the zero vector.
+void readDirection(const JsonNode& node, PunctualLight& l) {
+    const glm::vec3 d = node.vec3();
+    const float length = glm::length(d);
+    if (!(length > 0.0f) || !std::isfinite(length))
+        node.fail("direction is the zero vector: the light points nowhere");
+    l.direction = d / length;
+}
+
+// Directions turn: blended linearly, then normalized (opposite keys, whose blend passes through
+// zero, keep the first until the second).
+void blendDirection(const PunctualLight& a, const PunctualLight& b, float t, PunctualLight& out) {
+    if (t >= 1.0f || a.direction == b.direction) {
+        out.direction = t >= 1.0f ? b.direction : a.direction;
+        return;
+    }
+    const glm::vec3 d = a.direction + (b.direction - a.direction) * t;
+    const float length = glm::length(d);
+    out.direction = length > 1e-6f ? d / length : a.direction;
 }
 
 // As the scene loader's quad check (LightsJson.cpp): the quad must have an area.
@@ -163,19 +190,35 @@ const PropertyTable<Transform>& propertyTable<Transform>() {
 }
 
 template <>
-const PropertyTable<PointLight>& propertyTable<PointLight>() {
-    using L = PointLight;
+const PropertyTable<PunctualLight>& propertyTable<PunctualLight>() {
+    using L = PunctualLight;
     static const PropertyTable<L> table{
-        "point light",
+        "light",
         {
             {"position", false, [](const JsonNode& n, L& l) { l.position = n.vec3(); },
              linear<L, &L::position>},
-            // Radiant intensity, W/sr per channel.
+            // Radiant intensity, W/sr per channel (point and spot lights).
             {"intensity", false, [](const JsonNode& n, L& l) { l.intensity = n.rgb(kNonNegative); },
              linear<L, &L::intensity>},
+            // A directional light's irradiance, W/m^2 per channel: the same field.
+            {"irradiance", false,
+             [](const JsonNode& n, L& l) { l.intensity = n.rgb(kNonNegative); },
+             linear<L, &L::intensity>},
+            {"direction", false, readDirection, blendDirection},
+            {"inner_deg", false,
+             [](const JsonNode& n, L& l) { l.innerDeg = n.real(NumberRange::atLeast(0)); },
+             linear<L, &L::innerDeg>},
+            {"outer_deg", false,
+             [](const JsonNode& n, L& l) { l.outerDeg = n.real(NumberRange::openClosed(0, 90)); },
+             linear<L, &L::outerDeg>},
+            {"angle_deg", false,
+             [](const JsonNode& n, L& l) {
+                 l.angleDeg = n.real(NumberRange::closed(0, kMaxSunAngleDeg));
+             },
+             linear<L, &L::angleDeg>},
             {"on", true, [](const JsonNode& n, L& l) { l.on = n.boolean(); }, step<L, &L::on>},
         },
-        pointLightProblem};
+        punctualLightProblem};
     return table;
 }
 
@@ -282,7 +325,7 @@ bool scaleToConserveEnergy(Material& m) {
 
 IGI_PROPERTY_KIND(Camera)
 IGI_PROPERTY_KIND(Transform)
-IGI_PROPERTY_KIND(PointLight)
+IGI_PROPERTY_KIND(PunctualLight)
 IGI_PROPERTY_KIND(QuadLight)
 IGI_PROPERTY_KIND(Material)
 

@@ -58,7 +58,7 @@ const PropertyTable<Camera>& propertyTable<Camera>();
 template <>
 const PropertyTable<Transform>& propertyTable<Transform>();
 template <>
-const PropertyTable<PointLight>& propertyTable<PointLight>();
+const PropertyTable<PunctualLight>& propertyTable<PunctualLight>();
 template <>
 const PropertyTable<QuadLight>& propertyTable<QuadLight>();
 template <>

@@ -4,6 +4,8 @@
 #include <string>
 #include <type_traits>
 
+#include <glm/geometric.hpp>
+
 namespace igi::proto {
 namespace {
 
@@ -11,8 +13,8 @@ namespace {
 // a client silently keeps the old value. These sizes make the compiler say so (x86-64 / LP64).
 static_assert(sizeof(Camera) == 40, "Camera changed: update ChangeCodec.cpp");
 static_assert(sizeof(Transform) == 36, "Transform changed: update ChangeCodec.cpp");
-static_assert(sizeof(PointLight) == sizeof(std::string) + 32,
-              "PointLight changed: update ChangeCodec.cpp");
+static_assert(sizeof(PunctualLight) == sizeof(std::string) + 56,
+              "PunctualLight changed: update ChangeCodec.cpp");
 static_assert(sizeof(QuadLight) == sizeof(std::string) + 56,
               "QuadLight changed: update ChangeCodec.cpp");
 static_assert(sizeof(Material) == sizeof(std::string) + 88,
@@ -46,11 +48,16 @@ void write(ByteWriter& out, const TransformChange& c) {
     writeVec3(out, c.transform.scale);
 }
 
-void write(ByteWriter& out, const PointLightChange& c) {
-    writeTag(out, ChangeTag::PointLight);
+void write(ByteWriter& out, const PunctualLightChange& c) {
+    writeTag(out, ChangeTag::PunctualLight);
     out.u32(c.light);
+    out.u8(static_cast<std::uint8_t>(c.value.kind));
     writeVec3(out, c.value.position);
+    writeVec3(out, c.value.direction);
     writeVec3(out, c.value.intensity);
+    out.f32(c.value.innerDeg);
+    out.f32(c.value.outerDeg);
+    out.f32(c.value.angleDeg);
     out.boolean(c.value.on);
 }
 
@@ -145,6 +152,23 @@ class ChangeFields {
         return v == 1;
     }
 
+    /// A unit vector: a light's direction (the master sends it normalized).
+    glm::vec3 direction(const std::string& field) {
+        const glm::vec3 v = vec3(field);
+        const float length = glm::length(v);
+        if (!(std::abs(length - 1.0f) < 1e-3f))
+            fail(field + " has length " + std::to_string(length) + ", expected 1");
+        return v;
+    }
+
+    LightKind lightKind() {
+        const std::uint8_t v = in_.u8();
+        if (v > static_cast<std::uint8_t>(LightKind::Directional))
+            fail("kind is " + std::to_string(v) + ", expected 0 (point), 1 (spot) or " +
+                 "2 (directional)");
+        return static_cast<LightKind>(v);
+    }
+
     Reflection reflection() {
         const std::uint8_t v = in_.u8();
         if (v > static_cast<std::uint8_t>(Reflection::Ggx))
@@ -184,11 +208,23 @@ TransformChange readTransformChange(ChangeFields& f) {
     return c;
 }
 
-PointLightChange readPointLightChange(ChangeFields& f) {
-    PointLightChange c;
+PunctualLightChange readPunctualLightChange(ChangeFields& f) {
+    PunctualLightChange c;
     c.light = f.index();
+    c.value.kind = f.lightKind();
     c.value.position = f.vec3("position");
+    c.value.direction = f.direction("direction");
     c.value.intensity = f.colour("intensity");
+    c.value.innerDeg = f.finite("innerDeg");
+    c.value.outerDeg = f.finite("outerDeg");
+    if (!(c.value.outerDeg > 0.0f && c.value.outerDeg <= 90.0f))
+        f.fail("outerDeg is " + std::to_string(c.value.outerDeg) + ", expected in (0, 90]");
+    if (!(c.value.innerDeg >= 0.0f && c.value.innerDeg <= c.value.outerDeg))
+        f.fail("innerDeg is " + std::to_string(c.value.innerDeg) + ", expected in [0, outerDeg]");
+    c.value.angleDeg = f.finite("angleDeg");
+    if (!(c.value.angleDeg >= 0.0f && c.value.angleDeg <= kMaxSunAngleDeg))
+        f.fail("angleDeg is " + std::to_string(c.value.angleDeg) + ", expected in [0, " +
+               std::to_string(kMaxSunAngleDeg) + "]");
     c.value.on = f.flag("on");
     return c;
 }
@@ -237,9 +273,9 @@ SceneChange readSceneChange(ByteReader& in, std::uint32_t index) {
             ChangeFields f(in, index, "transform");
             return readTransformChange(f);
         }
-        case ChangeTag::PointLight: {
-            ChangeFields f(in, index, "point light");
-            return readPointLightChange(f);
+        case ChangeTag::PunctualLight: {
+            ChangeFields f(in, index, "punctual light");
+            return readPunctualLightChange(f);
         }
         case ChangeTag::QuadLight: {
             ChangeFields f(in, index, "quad light");

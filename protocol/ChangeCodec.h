@@ -20,7 +20,7 @@ constexpr std::size_t kMinChangeBytes = 1 + 4 + 24 + 1;
 enum class ChangeTag : std::uint8_t {
     Camera = 0,
     Transform = 1,
-    PointLight = 2,
+    PunctualLight = 2,
     QuadLight = 3,
     Material = 4,
 };

@@ -159,7 +159,7 @@ SceneChange randomChange(int kind, std::mt19937& rng) {
             return c;
         }
         case 2: {
-            PointLightChange c{index, {}};
+            PunctualLightChange c{index, {}};
             c.value.position = randomVec3(rng, -10, 10);
             c.value.intensity = randomVec3(rng, 0, 100);
             c.value.on = rng() % 2;
@@ -208,12 +208,12 @@ TEST(ChangeCodec, EmptyUpdateRoundTrips) {
 TEST(ChangeCodec, NamesAndTextureAreNotCarried) {
     // A change never renames a light or material, nor swaps a texture: applyChanges keeps the
     // state's; the wire does not spend bytes on them.
-    PointLightChange light{2, {}};
+    PunctualLightChange light{2, {}};
     light.value.name = "ceiling lamp";
     MaterialChange material{5, {}};
     material.value.name = "wood";
     material.value.diffuseTexture = 3;
-    EXPECT_EQ(encodeChange(light), encodeChange(PointLightChange{2, {}}));
+    EXPECT_EQ(encodeChange(light), encodeChange(PunctualLightChange{2, {}}));
     EXPECT_EQ(encodeChange(material), encodeChange(MaterialChange{5, {}}));
     const auto decoded = std::get<MaterialChange>(decodeChange(encodeChange(material)));
     EXPECT_EQ(decoded.value.name, "");
@@ -225,24 +225,35 @@ TEST(ChangeCodec, NamesAndTextureAreNotCarried) {
 TEST(ChangeCodec, SizesOfEveryKindAreAsDocumented) {
     EXPECT_EQ(encodeChange(CameraChange{}).size(), 41u);
     EXPECT_EQ(encodeChange(TransformChange{}).size(), 41u);
-    EXPECT_EQ(encodeChange(PointLightChange{}).size(), 30u);
+    EXPECT_EQ(encodeChange(PunctualLightChange{}).size(), 55u);
     EXPECT_EQ(encodeChange(QuadLightChange{}).size(), 54u);
     EXPECT_EQ(encodeChange(MaterialChange{}).size(), 71u);
     EXPECT_EQ(kMinChangeBytes, 30u);
 }
 
-TEST(ChangeCodec, PointLightLayoutIsLittleEndianAsDocumented) {
-    PointLightChange c{0x01020304, {}};
+TEST(ChangeCodec, PunctualLightLayoutIsLittleEndianAsDocumented) {
+    PunctualLightChange c{0x01020304, {}};
+    c.value.kind = LightKind::Spot;
     c.value.position = {1.0f, -2.0f, 0.5f};
+    c.value.direction = {0.0f, -1.0f, 0.0f};
     c.value.intensity = {0.0f, 1.0f, 2.0f};
+    c.value.innerDeg = 0.0f;
+    c.value.outerDeg = 2.0f;
+    c.value.angleDeg = 0.5f;
     c.value.on = true;
     const std::vector<std::uint8_t> expected = {
         2,                                   // tag
         4, 3, 2,    1,                       // light index
+        1,                                   // kind: spot
         0, 0, 0x80, 0x3F, 0, 0, 0,    0xC0,  // position 1, -2,
         0, 0, 0,    0x3F,                    //   0.5
+        0, 0, 0,    0,    0, 0, 0x80, 0xBF,  // direction 0, -1,
+        0, 0, 0,    0,                       //   0
         0, 0, 0,    0,    0, 0, 0x80, 0x3F,  // intensity 0, 1,
         0, 0, 0,    0x40,                    //   2
+        0, 0, 0,    0,                       // innerDeg 0
+        0, 0, 0,    0x40,                    // outerDeg 2
+        0, 0, 0,    0x3F,                    // angleDeg 0.5
         1,                                   // on
     };
     EXPECT_EQ(encodeChange(c), expected);
@@ -307,8 +318,8 @@ TEST(ChangeCodec, NonFiniteFloatsAreRefusedWithIndexAndField) {
         errorAfter([](auto& c) { as<CameraChange>(c, kCamera).camera.up.z = -INFINITY; }),
         "change 0 (camera): up.z");
     EXPECT_CONTAINS(
-        errorAfter([](auto& c) { as<PointLightChange>(c, kPoint).value.position.x = NAN; }),
-        "change 2 (point light): position.x");
+        errorAfter([](auto& c) { as<PunctualLightChange>(c, kPoint).value.position.x = NAN; }),
+        "change 2 (punctual light): position.x");
     EXPECT_CONTAINS(
         errorAfter([](auto& c) { as<QuadLightChange>(c, kQuad).value.edge2.y = INFINITY; }),
         "change 3 (quad light): edge2.y");
@@ -321,12 +332,12 @@ TEST(ChangeCodec, NonFiniteFloatsAreRefusedWithIndexAndField) {
 }
 
 TEST(ChangeCodec, BadBooleansAreRefusedWithIndexAndField) {
-    // Offsets within the change: point light `on` 29, quad light `on` 53, material `glass` 34.
-    EXPECT_EQ(errorWithByte(kPoint, 29, 2),
-              "SceneUpdate: change 2 (point light): on is 2, expected 0 or 1");
+    // Offsets within the change: punctual light `on` 54, quad light `on` 53, material `glass` 34.
+    EXPECT_EQ(errorWithByte(kPoint, 54, 2),
+              "SceneUpdate: change 2 (punctual light): on is 2, expected 0 or 1");
     EXPECT_CONTAINS(errorWithByte(kQuad, 53, 0xFF), "change 3 (quad light): on is 255");
     EXPECT_CONTAINS(errorWithByte(kMaterial, 34, 7), "change 4 (material): glass is 7");
-    EXPECT_EQ(errorWithByte(kPoint, 29, 1), "(no error)");
+    EXPECT_EQ(errorWithByte(kPoint, 54, 1), "(no error)");
 }
 
 TEST(ChangeCodec, RoughnessAndMetallicMustBeFractions) {
@@ -386,8 +397,8 @@ TEST(ChangeCodec, IorMustBePositive) {
 
 TEST(ChangeCodec, ColoursAndPhongExponentMustNotBeNegative) {
     EXPECT_EQ(
-        errorAfter([](auto& c) { as<PointLightChange>(c, kPoint).value.intensity.z = -1.0f; }),
-        "SceneUpdate: change 2 (point light): intensity.z is -1.000000, expected >= 0");
+        errorAfter([](auto& c) { as<PunctualLightChange>(c, kPoint).value.intensity.z = -1.0f; }),
+        "SceneUpdate: change 2 (punctual light): intensity.z is -1.000000, expected >= 0");
     EXPECT_CONTAINS(
         errorAfter([](auto& c) { as<QuadLightChange>(c, kQuad).value.radiance.x = -0.5f; }),
         "change 3 (quad light): radiance.x");

@@ -44,7 +44,7 @@ inline std::vector<SceneChange> sampleChanges() {
     transform.transform.rotateDeg = {-90.0f, 45.0f, 370.0f};
     transform.transform.scale = {2.0f, -0.5f, 1e6f};
 
-    PointLightChange point;
+    PunctualLightChange point;
     point.light = 3;
     point.value.position = {-4.0f, 5.5f, 0.25f};
     point.value.intensity = {100.0f, 0.0f, 3.75f};

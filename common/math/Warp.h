@@ -14,8 +14,8 @@ constexpr float kInvPi = 1.0f / kPi;
 
 /// Maps of the unit square to directions and points, each with its density.
 
-/// Cosine-weighted direction about +Z (Malley's method on a concentric disk); pdf cos/pi.
-inline glm::vec3 squareToCosineHemisphere(glm::vec2 u) {
+/// A uniform point on the unit disk (Shirley and Chiu's concentric map); pdf 1/pi.
+inline glm::vec2 squareToUniformDisk(glm::vec2 u) {
     const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
     float r = 0, phi = 0;
     if (a != 0 || b != 0) {
@@ -27,8 +27,13 @@ inline glm::vec3 squareToCosineHemisphere(glm::vec2 u) {
             phi = (kPi / 2) - (kPi / 4) * (a / b);
         }
     }
-    const float x = r * std::cos(phi), y = r * std::sin(phi);
-    return {x, y, std::sqrt(std::max(0.0f, 1.0f - x * x - y * y))};
+    return {r * std::cos(phi), r * std::sin(phi)};
+}
+
+/// Cosine-weighted direction about +Z (Malley's method on a concentric disk); pdf cos/pi.
+inline glm::vec3 squareToCosineHemisphere(glm::vec2 u) {
+    const glm::vec2 d = squareToUniformDisk(u);
+    return {d.x, d.y, std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y))};
 }
 
 /// Uniform direction on the sphere; pdf 1/(4 pi).

@@ -82,11 +82,11 @@ Camera frameBounds(const Bounds3& bounds, const ImageSettings& image, const std:
 void addHeadlight(Scene& scene) {
     // Irradiance I / d^2 at the look-at point, facing the camera: 1 when I = d^2.
     const float d = glm::length(scene.camera.position - scene.camera.lookAt);
-    PointLight light;
+    PunctualLight light;
     light.name = "headlight";
     light.position = scene.camera.position;
     light.intensity = glm::vec3(d * d);
-    scene.pointLights.push_back(light);
+    scene.punctualLights.push_back(light);
 }
 
 }  // namespace igi

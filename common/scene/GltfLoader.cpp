@@ -15,6 +15,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/matrix.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "scene/GltfPrescan.h"
 #include "scene/MtlMaterials.h"
@@ -25,7 +26,8 @@ namespace igi {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+// Luminous efficacy of the specification's photometric light units (lm/W).
+constexpr double kLumensPerWatt = 683.0;
 constexpr int kMaxNodeDepth = 256;
 // glTF itself nests about 8 levels; tinygltf copies "extras" recursively, so a deeper nest
 // could exhaust the stack.
@@ -220,8 +222,8 @@ std::string extensionForMime(const std::string& mime) {
 
 // ---- What the file uses that igi does not model -------------------------------------------
 
-// Extensions whose content igi reads (KHR_lights_punctual's spot and directional lights and
-// KHR_materials_transmission's partial transmission are approximated, with warnings of their
+// Extensions whose content igi reads (KHR_lights_punctual's range is not modelled and
+// KHR_materials_transmission's partial transmission is approximated, with warnings of their
 // own). KHR_mesh_quantization's attribute types are read by AccessorReader, which refuses the
 // ones it cannot read by name.
 bool modelledExtension(const std::string& name) {
@@ -598,7 +600,7 @@ std::vector<glm::uvec3> assembleTriangles(int mode, const std::vector<std::uint3
 class GltfFlattener {
   public:
     GltfFlattener(const std::string& path, const tinygltf::Model& model, std::uint32_t materialBase,
-                  SceneAssets& assets, Mesh& mesh, std::vector<PointLight>& lights)
+                  SceneAssets& assets, Mesh& mesh, std::vector<PunctualLight>& lights)
         : path_(path),
           model_(model),
           accessors_(path, model, assets.limits().maxVertices),
@@ -671,20 +673,39 @@ class GltfFlattener {
                 "KHR_lights_punctual light " + std::to_string(index) + " does not exist");
         }
         const tinygltf::Light& gl = model_.lights[index];
-        PointLight light;
+        PunctualLight light;
         light.name = gl.name.empty() ? "light" + std::to_string(index) : gl.name;
+        light.position = glm::vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+        // Spot and directional lights shine down the node's local -Z.
+        const glm::dvec3 axis = glm::dvec3(world * glm::dvec4(0.0, 0.0, -1.0, 0.0));
+        if (glm::length(axis) > 0.0) light.direction = glm::vec3(glm::normalize(axis));
+        // The specification's photometric units (candela, lux) become radiometric ones with
+        // the luminous efficacy 683 lm/W, as Blender's importer does in its default lighting
+        // mode (Standard): W/sr = cd / 683, W/m^2 = lux / 683 (docs/SCENE_FORMAT.md, "glTF").
+        const glm::vec3 colour = glm::max(vec3Of(gl.color, glm::vec3(1.0f)), 0.0f);
+        light.intensity = colour * static_cast<float>(std::max(gl.intensity, 0.0) / kLumensPerWatt);
         if (gl.type == "directional") {
-            spdlog::warn("{}: directional light '{}' is not supported: ignored", path_, light.name);
+            light.kind = LightKind::Directional;
+        } else if (gl.type == "spot") {
+            light.kind = LightKind::Spot;
+            light.outerDeg =
+                static_cast<float>(std::clamp(glm::degrees(gl.spot.outerConeAngle), 1e-3, 90.0));
+            light.innerDeg = static_cast<float>(
+                std::clamp(glm::degrees(gl.spot.innerConeAngle), 0.0, double(light.outerDeg)));
+        } else if (gl.type != "point") {
+            spdlog::warn("{}: light '{}' has the unknown type '{}': ignored", path_, light.name,
+                         gl.type);
             return;
         }
-        if (gl.type == "spot") {
-            spdlog::warn("{}: spot light '{}' is treated as a point light", path_, light.name);
+        if (gl.range > 0.0 && !warnedRange_) {
+            // Blender's importer ignores it too; a light that stops at a distance is not
+            // physical and not modelled.
+            spdlog::warn(
+                "{}: light '{}' has a range ({}): not modelled, its light reaches "
+                "further",
+                path_, light.name, gl.range);
+            warnedRange_ = true;
         }
-        light.position = glm::vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
-        // glTF gives candela; igi reads the number as a power and spreads it over the sphere
-        // (docs/SCENE_FORMAT.md, "glTF").
-        const glm::vec3 colour = glm::max(vec3Of(gl.color, glm::vec3(1.0f)), 0.0f);
-        light.intensity = colour * static_cast<float>(std::max(gl.intensity, 0.0) / (4.0 * kPi));
         lights_.push_back(light);
     }
 
@@ -870,7 +891,8 @@ class GltfFlattener {
     std::uint32_t materialBase_;
     SceneAssets& assets_;
     Mesh& mesh_;
-    std::vector<PointLight>& lights_;
+    std::vector<PunctualLight>& lights_;
+    bool warnedRange_ = false;  ///< one warning per file for lights with a range
     std::vector<bool> visited_;
     bool withNormals_ = false;
     bool withUvs_ = false;
@@ -881,7 +903,7 @@ class GltfFlattener {
 }  // namespace
 
 void loadGltf(const std::string& path, SceneAssets& assets, Mesh& mesh,
-              std::vector<PointLight>& lights) {
+              std::vector<PunctualLight>& lights) {
     const tinygltf::Model model = parseGltf(path, assets);
     checkGltfFeatures(path, model);
     const std::uint32_t base = GltfMaterials(path, model, assets).appendAll();

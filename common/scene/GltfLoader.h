@@ -16,6 +16,6 @@ namespace igi {
 /// in the file's space (the caller applies the mesh's own transform). Throws SceneError naming
 /// the file and the glTF JSON path of what is wrong.
 void loadGltf(const std::string& path, SceneAssets& assets, Mesh& mesh,
-              std::vector<PointLight>& lights);
+              std::vector<PunctualLight>& lights);
 
 }  // namespace igi

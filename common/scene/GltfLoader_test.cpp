@@ -68,13 +68,14 @@ TEST_F(GltfTriangle, Materials) {
 }
 
 TEST_F(GltfTriangle, PunctualLightPlacedByNodesAndMeshTransform) {
-    ASSERT_EQ(scene_->pointLights.size(), 1u);
-    const PointLight& l = scene_->pointLights[0];
+    ASSERT_EQ(scene_->punctualLights.size(), 1u);
+    const PunctualLight& l = scene_->punctualLights[0];
     EXPECT_EQ(l.name, "lamp");
     // Node (0,3,0) under a node scaled by 2, then the scene file's translate (10,0,0).
     expectNear(l.position, {10, 6, 0});
-    // color x intensity / (4 pi), intensity = 40 pi.
-    expectNear(l.intensity, {10, 5, 2.5f}, 1e-4f);
+    // color x candela / 683 (Blender's Standard conversion), intensity = 40 pi.
+    expectNear(l.intensity, glm::vec3(40, 20, 10) * (3.14159265f / 683.0f), 1e-5f);
+    EXPECT_EQ(l.kind, LightKind::Point);
 }
 
 TEST(GltfLoader, MissingImageNamesIt) {

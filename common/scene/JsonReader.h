@@ -31,6 +31,8 @@ struct NumberRange {
     static NumberRange above(double lo) { return {lo, HUGE_VAL, true, false}; }
     /// [lo, hi)
     static NumberRange closedOpen(double lo, double hi) { return {lo, hi, false, true}; }
+    /// (lo, hi]
+    static NumberRange openClosed(double lo, double hi) { return {lo, hi, true, false}; }
 
     bool contains(double v) const;
     std::string text() const;

@@ -1,3 +1,5 @@
+#include <cmath>
+
 #include <glm/geometric.hpp>
 
 #include "scene/SceneSections.h"
@@ -6,13 +8,61 @@ namespace igi {
 
 namespace {
 
-PointLight parsePointLight(const JsonNode& node, std::string name) {
+// A spot light's outer half-angle: a cone that opens, at most a hemisphere.
+const NumberRange kOuterConeRange = NumberRange::openClosed(0, 90);
+
+PunctualLight parsePointLight(const JsonNode& node, std::string name) {
     node.checkKeys({"type", "name", "position", "intensity"});
-    PointLight light;
+    PunctualLight light;
     light.name = std::move(name);
     light.position = node.at("position").vec3();
     // Radiant intensity in W/sr per channel, [r, g, b] or one number.
     light.intensity = node.at("intensity").rgb(NumberRange::atLeast(0));
+    return light;
+}
+
+// A unit direction from a key that must not be the zero vector (or non-finite).
+glm::vec3 readDirection(const JsonNode& node) {
+    const glm::vec3 d = node.vec3();
+    const float length = glm::length(d);
+    if (!(length > 0.0f) || !std::isfinite(length)) {
+        node.fail("direction is the zero vector: the light points nowhere");
+    }
+    return d / length;
+}
+
+PunctualLight parseSpotLight(const JsonNode& node, std::string name) {
+    node.checkKeys(
+        {"type", "name", "position", "direction", "intensity", "inner_deg", "outer_deg"});
+    PunctualLight light;
+    light.name = std::move(name);
+    light.kind = LightKind::Spot;
+    light.position = node.at("position").vec3();
+    light.direction = readDirection(node.at("direction"));
+    // Radiant intensity on the axis, W/sr per channel.
+    light.intensity = node.at("intensity").rgb(NumberRange::atLeast(0));
+    // Half-angles of the cones, as glTF's innerConeAngle and outerConeAngle (in degrees).
+    if (auto outer = node.find("outer_deg")) light.outerDeg = outer->real(kOuterConeRange);
+    if (auto inner = node.find("inner_deg")) {
+        light.innerDeg = inner->real(NumberRange::atLeast(0));
+        if (!(light.innerDeg <= light.outerDeg)) {
+            inner->fail("inner_deg " + std::to_string(light.innerDeg) + " exceeds outer_deg " +
+                        std::to_string(light.outerDeg));
+        }
+    }
+    return light;
+}
+
+PunctualLight parseDirectionalLight(const JsonNode& node, std::string name) {
+    node.checkKeys({"type", "name", "direction", "irradiance", "angle_deg"});
+    PunctualLight light;
+    light.name = std::move(name);
+    light.kind = LightKind::Directional;
+    light.direction = readDirection(node.at("direction"));
+    // Irradiance in W/m^2 on a surface that faces the light, per channel.
+    light.intensity = node.at("irradiance").rgb(NumberRange::atLeast(0));
+    if (auto angle = node.find("angle_deg"))
+        light.angleDeg = angle->real(NumberRange::closed(0, kMaxSunAngleDeg));
     return light;
 }
 
@@ -38,7 +88,7 @@ QuadLight parseQuadLight(const JsonNode& node, std::string name) {
 
 void parseLights(const JsonNode& node, Scene& scene, std::size_t maxLights) {
     // glTF files may have brought lights already.
-    const std::size_t have = scene.pointLights.size() + scene.quadLights.size();
+    const std::size_t have = scene.punctualLights.size() + scene.quadLights.size();
     const std::size_t count = node.value().is_array() ? node.value().size() : 0;
     if (count > maxLights || have > maxLights - count) {
         node.fail(std::to_string(count) + " lights would exceed the limit of " +
@@ -51,8 +101,13 @@ void parseLights(const JsonNode& node, Scene& scene, std::size_t maxLights) {
         l.requireObject();
         std::string name = "light" + std::to_string(i);
         if (auto n = l.find("name")) name = n->string();
-        if (l.at("type").choice({"point", "quad"}) == "point") {
-            scene.pointLights.push_back(parsePointLight(l, std::move(name)));
+        const std::string type = l.at("type").choice({"point", "spot", "directional", "quad"});
+        if (type == "point") {
+            scene.punctualLights.push_back(parsePointLight(l, std::move(name)));
+        } else if (type == "spot") {
+            scene.punctualLights.push_back(parseSpotLight(l, std::move(name)));
+        } else if (type == "directional") {
+            scene.punctualLights.push_back(parseDirectionalLight(l, std::move(name)));
         } else {
             scene.quadLights.push_back(parseQuadLight(l, std::move(name)));
         }

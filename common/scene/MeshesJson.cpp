@@ -2,6 +2,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
 #include "scene/GltfLoader.h"
@@ -61,9 +62,9 @@ void loadMesh(const JsonNode& entry, SceneAssets& assets) {
     if (ext == ".obj") {
         loadObj(mesh.file, assets, mesh);
     } else {
-        std::vector<PointLight> lights;
+        std::vector<PunctualLight> lights;
         loadGltf(mesh.file, assets, mesh, lights);
-        const std::size_t have = assets.scene().pointLights.size();
+        const std::size_t have = assets.scene().punctualLights.size();
         const std::size_t max = assets.limits().maxLights;
         if (lights.size() > max || have > max - lights.size()) {
             fileNode.fail("its " + std::to_string(lights.size()) +
@@ -71,9 +72,12 @@ void loadMesh(const JsonNode& entry, SceneAssets& assets) {
                           " lights per scene");
         }
         const glm::mat4 m = mesh.transform.matrix();
-        for (PointLight& l : lights) {
+        for (PunctualLight& l : lights) {
             l.position = glm::vec3(m * glm::vec4(l.position, 1.0f));
-            assets.scene().pointLights.push_back(std::move(l));
+            // A direction turns with the entry (its scale does not stretch the light).
+            const glm::vec3 d = glm::vec3(m * glm::vec4(l.direction, 0.0f));
+            if (glm::length(d) > 0.0f) l.direction = glm::normalize(d);
+            assets.scene().punctualLights.push_back(std::move(l));
         }
     }
     assets.scene().meshes.push_back(std::move(mesh));

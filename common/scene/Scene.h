@@ -28,7 +28,7 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Texture> textures;
     std::vector<Mesh> meshes;
-    std::vector<PointLight> pointLights;
+    std::vector<PunctualLight> punctualLights;
     std::vector<QuadLight> quadLights;
     RenderSettings render;
 };

@@ -14,7 +14,9 @@ Bounds3 worldBounds(const Scene& scene) {
         b.extend(q.corner + q.edge2);
         b.extend(q.corner + q.edge1 + q.edge2);
     }
-    for (const PointLight& l : scene.pointLights) b.extend(l.position);
+    // A directional light has no position: it is everywhere outside.
+    for (const PunctualLight& l : scene.punctualLights)
+        if (l.kind != LightKind::Directional) b.extend(l.position);
     return b;
 }
 

@@ -54,11 +54,11 @@ void expectSameScene(const Scene& a, const Scene& b) {
         EXPECT_EQ(a.textures[i].texels, b.textures[i].texels);
         EXPECT_EQ(a.textures[i].average, b.textures[i].average);
     }
-    ASSERT_EQ(a.pointLights.size(), b.pointLights.size());
-    for (std::size_t i = 0; i < a.pointLights.size(); ++i) {
-        EXPECT_EQ(a.pointLights[i].name, b.pointLights[i].name);
-        EXPECT_EQ(a.pointLights[i].position, b.pointLights[i].position);
-        EXPECT_EQ(a.pointLights[i].intensity, b.pointLights[i].intensity);
+    ASSERT_EQ(a.punctualLights.size(), b.punctualLights.size());
+    for (std::size_t i = 0; i < a.punctualLights.size(); ++i) {
+        EXPECT_EQ(a.punctualLights[i].name, b.punctualLights[i].name);
+        EXPECT_EQ(a.punctualLights[i].position, b.punctualLights[i].position);
+        EXPECT_EQ(a.punctualLights[i].intensity, b.punctualLights[i].intensity);
     }
     ASSERT_EQ(a.quadLights.size(), b.quadLights.size());
     for (std::size_t i = 0; i < a.quadLights.size(); ++i) {
@@ -109,15 +109,15 @@ TEST(SceneBundle, SharedScenesRoundTrip) {
 TEST(SceneLoader, BareGltfIsAScene) {
     const auto lit = test::testdataDir() / "gltf" / "triangle.gltf";
     const Scene withLamp = loadSceneFile(lit);
-    ASSERT_EQ(withLamp.pointLights.size(), 1u);
-    EXPECT_EQ(withLamp.pointLights[0].name, "lamp");
+    ASSERT_EQ(withLamp.punctualLights.size(), 1u);
+    EXPECT_EQ(withLamp.punctualLights[0].name, "lamp");
     expectRoundTrip(lit);
 
     const auto plain = test::testdataDir() / "gltf" / "plain.gltf";
     SceneBundle bundle;
     const Scene dark = loadSceneFile(plain, &bundle);
-    ASSERT_EQ(dark.pointLights.size(), 1u);
-    EXPECT_EQ(dark.pointLights[0].name, "headlight");
+    ASSERT_EQ(dark.punctualLights.size(), 1u);
+    EXPECT_EQ(dark.punctualLights[0].name, "headlight");
     EXPECT_NE(bundle.sceneText.find("headlight"), std::string::npos);
     expectRoundTrip(plain);
 }
@@ -158,8 +158,8 @@ TEST(SceneLoader, BareGlbIsAScene) {
     ASSERT_EQ(scene.meshes.size(), gltf.meshes.size());
     EXPECT_EQ(scene.meshes[0].positions, gltf.meshes[0].positions);
     EXPECT_EQ(scene.meshes[0].triangles, gltf.meshes[0].triangles);
-    ASSERT_EQ(scene.pointLights.size(), 1u);
-    EXPECT_EQ(scene.pointLights[0].name, "headlight");
+    ASSERT_EQ(scene.punctualLights.size(), 1u);
+    EXPECT_EQ(scene.punctualLights[0].name, "headlight");
     EXPECT_EQ(scene.camera.position, gltf.camera.position) << "auto-framed the same way";
 }
 
@@ -169,7 +169,7 @@ TEST(SceneLoader, BareSharedGltfScenes) {
     const auto emissive = *shared / "gltf" / "EmissiveStrengthTest" / "glTF";
     SceneBundle bundle;
     const Scene lit = loadSceneFile(emissive / "EmissiveStrengthTest.gltf", &bundle);
-    EXPECT_TRUE(lit.pointLights.empty()) << "emissive cubes light it: no headlight";
+    EXPECT_TRUE(lit.punctualLights.empty()) << "emissive cubes light it: no headlight";
     EXPECT_EQ(bundle.sceneText.find("headlight"), std::string::npos);
     expectRoundTrip(emissive / "EmissiveStrengthTest.gltf");
     expectRoundTrip(*shared / "gltf" / "LightsPunctualLamp" / "glTF" / "LightsPunctualLamp.gltf");

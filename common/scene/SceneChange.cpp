@@ -23,11 +23,11 @@ void apply(SceneState& s, const SceneChange& change) {
             } else if constexpr (std::is_same_v<C, TransformChange>) {
                 checkIndex(c.mesh, s.transforms, "mesh");
                 s.transforms[c.mesh] = c.transform;
-            } else if constexpr (std::is_same_v<C, PointLightChange>) {
-                checkIndex(c.light, s.pointLights, "point light");
-                PointLight value = c.value;
-                value.name = s.pointLights[c.light].name;
-                s.pointLights[c.light] = value;
+            } else if constexpr (std::is_same_v<C, PunctualLightChange>) {
+                checkIndex(c.light, s.punctualLights, "point light");
+                PunctualLight value = c.value;
+                value.name = s.punctualLights[c.light].name;
+                s.punctualLights[c.light] = value;
             } else if constexpr (std::is_same_v<C, QuadLightChange>) {
                 checkIndex(c.light, s.quadLights, "quad light");
                 QuadLight value = c.value;
@@ -63,9 +63,9 @@ std::vector<SceneChange> diffStates(const SceneState& from, const SceneState& to
     for (std::uint32_t i = 0; i < to.transforms.size() && i < from.transforms.size(); ++i)
         if (!(from.transforms[i] == to.transforms[i]))
             changes.push_back(TransformChange{i, to.transforms[i]});
-    for (std::uint32_t i = 0; i < to.pointLights.size() && i < from.pointLights.size(); ++i)
-        if (!(from.pointLights[i] == to.pointLights[i]))
-            changes.push_back(PointLightChange{i, to.pointLights[i]});
+    for (std::uint32_t i = 0; i < to.punctualLights.size() && i < from.punctualLights.size(); ++i)
+        if (!(from.punctualLights[i] == to.punctualLights[i]))
+            changes.push_back(PunctualLightChange{i, to.punctualLights[i]});
     for (std::uint32_t i = 0; i < to.quadLights.size() && i < from.quadLights.size(); ++i)
         if (!(from.quadLights[i] == to.quadLights[i]))
             changes.push_back(QuadLightChange{i, to.quadLights[i]});

@@ -20,10 +20,10 @@ struct TransformChange {
     Transform transform;
     bool operator==(const TransformChange&) const = default;
 };
-struct PointLightChange {
+struct PunctualLightChange {
     std::uint32_t light = 0;
-    PointLight value;  ///< position, intensity, on (the name is not changed)
-    bool operator==(const PointLightChange&) const = default;
+    PunctualLight value;  ///< position, intensity, on (the name is not changed)
+    bool operator==(const PunctualLightChange&) const = default;
 };
 struct QuadLightChange {
     std::uint32_t light = 0;
@@ -37,7 +37,7 @@ struct MaterialChange {
 };
 
 using SceneChange =
-    std::variant<CameraChange, TransformChange, PointLightChange, QuadLightChange, MaterialChange>;
+    std::variant<CameraChange, TransformChange, PunctualLightChange, QuadLightChange, MaterialChange>;
 
 /// Applies changes in order. Throws std::invalid_argument naming the first change whose index
 /// is out of range (the state is then unchanged).

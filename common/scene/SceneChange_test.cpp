@@ -10,7 +10,7 @@ SceneState twoObjects() {
     s.transforms = {Transform{}, Transform{}};
     s.materials = {Material{}, Material{}};
     s.materials[1].name = "red";
-    s.pointLights = {PointLight{"lamp", glm::vec3(0, 2, 0), glm::vec3(1), true}};
+    s.punctualLights = {pointLight("lamp", glm::vec3(0, 2, 0), glm::vec3(1), true)};
     s.quadLights = {QuadLight{"panel", glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 0, 1),
                               glm::vec3(5), true}};
     return s;
@@ -22,7 +22,7 @@ TEST(SceneChange, DiffThenApplyReproducesTheTarget) {
     to.camera.position = glm::vec3(1, 2, 3);
     to.transforms[1].translate = glm::vec3(0.5f, 0, 0);
     to.materials[1].diffuse = glm::vec3(0.9f, 0.1f, 0.1f);
-    to.pointLights[0].on = false;
+    to.punctualLights[0].on = false;
     to.quadLights[0].radiance = glm::vec3(2);
     const auto changes = diffStates(from, to);
     EXPECT_EQ(changes.size(), 5u);

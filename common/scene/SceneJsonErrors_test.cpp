@@ -112,11 +112,42 @@ TEST(SceneJsonErrors, MissingMeshFile) {
                     "/meshes/0/file: unsupported mesh format '.ply'");
 }
 
+TEST(SceneJsonErrors, BadSpotAndDirectionalLightsNameTheKey) {
+    EXPECT_CONTAINS(sceneErrorOf([] {
+                        parseInline(R"({"lights": [{"type": "directional", "direction": [0, 0, 0],
+                                        "irradiance": 1}]})");
+                    }),
+                    "/lights/0/direction: direction is the zero vector");
+    EXPECT_CONTAINS(sceneErrorOf([] {
+                        parseInline(R"({"lights": [{"type": "spot", "position": [0, 1, 0],
+                                        "direction": [0, -1, 0], "intensity": 1,
+                                        "inner_deg": 50, "outer_deg": 40}]})");
+                    }),
+                    "/lights/0/inner_deg: inner_deg 50.000000 exceeds outer_deg 40.000000");
+    EXPECT_CONTAINS(sceneErrorOf([] {
+                        parseInline(R"({"lights": [{"type": "spot", "position": [0, 1, 0],
+                                        "direction": [0, -1, 0], "intensity": 1,
+                                        "outer_deg": 95}]})");
+                    }),
+                    "/lights/0/outer_deg");
+    EXPECT_CONTAINS(sceneErrorOf([] {
+                        parseInline(R"({"lights": [{"type": "directional", "direction": [0, -1, 0],
+                                        "irradiance": 1, "angle_deg": 45}]})");
+                    }),
+                    "/lights/0/angle_deg");
+    EXPECT_CONTAINS(sceneErrorOf([] {
+                        parseInline(R"({"lights": [{"type": "directional", "direction": [0, -1, 0],
+                                        "intensity": 1}]})");
+                    }),
+                    "/lights/0/intensity: unknown key");
+}
+
 TEST(SceneJsonErrors, BadTypes) {
     EXPECT_CONTAINS(sceneErrorOf([] {
-                        parseInline(R"({"lights": [{"type": "spot", "position": [0, 0, 0]}]})");
+                        parseInline(R"({"lights": [{"type": "area", "position": [0, 0, 0]}]})");
                     }),
-                    "/lights/0/type: unknown value 'spot' (expected one of: point, quad)");
+                    "/lights/0/type: unknown value 'area' (expected one of: point, spot, "
+                    "directional, quad)");
     EXPECT_CONTAINS(
         sceneErrorOf([] {
             parseInline(R"({"meshes": [{"file": "t.obj"}], "materials": {"a": {"type": "metal"}}})",

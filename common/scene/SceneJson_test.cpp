@@ -95,10 +95,10 @@ TEST_F(MinimalScene, MaterialsAppendedPerFileAndOverridden) {
 
 TEST_F(MinimalScene, LightsAndHeadlight) {
     const Scene& s = *scene_;
-    ASSERT_EQ(s.pointLights.size(), 2u);
-    EXPECT_EQ(s.pointLights[0].name, "bulb");
-    expectNear(s.pointLights[0].position, {0, 2, 0});
-    expectNear(s.pointLights[0].intensity, {1, 2, 3});
+    ASSERT_EQ(s.punctualLights.size(), 2u);
+    EXPECT_EQ(s.punctualLights[0].name, "bulb");
+    expectNear(s.punctualLights[0].position, {0, 2, 0});
+    expectNear(s.punctualLights[0].intensity, {1, 2, 3});
     ASSERT_EQ(s.quadLights.size(), 1u);
     EXPECT_EQ(s.quadLights[0].name, "light1");
     expectNear(s.quadLights[0].corner, {0, 1.9f, 0});
@@ -106,9 +106,9 @@ TEST_F(MinimalScene, LightsAndHeadlight) {
     expectNear(s.quadLights[0].edge2, {0, 0, 1});
     expectNear(s.quadLights[0].radiance, {5, 5, 5});
     // The headlight: at the camera, irradiance 1 at the look-at point 3 units away.
-    EXPECT_EQ(s.pointLights[1].name, "headlight");
-    expectNear(s.pointLights[1].position, s.camera.position);
-    expectNear(s.pointLights[1].intensity, {9, 9, 9}, 1e-4f);
+    EXPECT_EQ(s.punctualLights[1].name, "headlight");
+    expectNear(s.punctualLights[1].position, s.camera.position);
+    expectNear(s.punctualLights[1].intensity, {9, 9, 9}, 1e-4f);
 }
 
 TEST_F(MinimalScene, RenderSettings) {
@@ -142,8 +142,8 @@ TEST(SceneJson, DefaultsWhenSectionsAreAbsent) {
     EXPECT_EQ(s.image.height, 480);
     EXPECT_EQ(s.render, RenderSettings{});
     EXPECT_TRUE(s.meshes.empty());
-    ASSERT_EQ(s.pointLights.size(), 1u);
-    expectNear(s.pointLights[0].intensity, {1, 1, 1});
+    ASSERT_EQ(s.punctualLights.size(), 1u);
+    expectNear(s.punctualLights[0].intensity, {1, 1, 1});
 }
 
 TEST(SceneJson, CameraDefaultsUpAndFov) {
@@ -203,6 +203,30 @@ TEST(SceneJson, AutoCameraFramesTheBoundsFromPlusZ) {
     }
 }
 
+TEST(SceneJson, SpotAndDirectionalLights) {
+    const Scene s = test::parseInline(R"({"lights": [
+        {"type": "spot", "name": "s", "position": [0, 2, 0], "direction": [0, -2, 0],
+         "intensity": [1, 2, 3], "inner_deg": 10, "outer_deg": 30},
+        {"type": "directional", "name": "sun", "direction": [3, -4, 0], "irradiance": 5,
+         "angle_deg": 0.5}]})");
+    ASSERT_EQ(s.punctualLights.size(), 2u);
+    const PunctualLight& spot = s.punctualLights[0];
+    EXPECT_EQ(spot.kind, LightKind::Spot);
+    EXPECT_EQ(spot.direction, glm::vec3(0, -1, 0));  // normalized
+    EXPECT_EQ(spot.intensity, glm::vec3(1, 2, 3));
+    EXPECT_FLOAT_EQ(spot.innerDeg, 10.0f);
+    EXPECT_FLOAT_EQ(spot.outerDeg, 30.0f);
+    const PunctualLight& sun = s.punctualLights[1];
+    EXPECT_EQ(sun.kind, LightKind::Directional);
+    EXPECT_NEAR(sun.direction.x, 0.6f, 1e-6f);
+    EXPECT_NEAR(sun.direction.y, -0.8f, 1e-6f);
+    EXPECT_EQ(sun.intensity, glm::vec3(5));
+    EXPECT_FLOAT_EQ(sun.angleDeg, 0.5f);
+    // A sun has no place: the bounds hold the spot alone.
+    EXPECT_EQ(worldBounds(s).lo, glm::vec3(0, 2, 0));
+    EXPECT_EQ(worldBounds(s).hi, glm::vec3(0, 2, 0));
+}
+
 TEST(SceneBounds, MeshesThroughTransformsAndLights) {
     Scene s;
     Mesh m;
@@ -211,7 +235,7 @@ TEST(SceneBounds, MeshesThroughTransformsAndLights) {
     m.transform.translate = {10, 0, 0};
     s.meshes.push_back(m);
     s.quadLights.push_back({"q", {0, 5, 0}, {1, 0, 0}, {0, 0, -1}, {1, 1, 1}});
-    s.pointLights.push_back({"p", {0, -7, 0}, {1, 1, 1}});
+    s.punctualLights.push_back(pointLight("p", {0, -7, 0}, {1, 1, 1}));
     const Bounds3 b = worldBounds(s);
     expectNear(b.lo, {0, -7, -1});
     expectNear(b.hi, {12, 5, 2});

@@ -32,7 +32,7 @@ void parseLights(const JsonNode& node, Scene& scene,
                  std::size_t maxLights = SceneLimits{}.maxLights);
 
 /// "meshes": [{file, name, transform}]: loads every file into scene.meshes (and its glTF
-/// lights into scene.pointLights).
+/// lights into scene.punctualLights).
 void loadMeshes(const JsonNode& node, SceneAssets& assets);
 
 /// "materials": {name: {overrides}}, applied to every loaded material of that name.

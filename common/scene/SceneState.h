@@ -18,7 +18,7 @@ struct SceneState {
     Camera camera;
     std::vector<Transform> transforms;  ///< one per mesh, in Scene::meshes order
     std::vector<Material> materials;    ///< as Scene::materials
-    std::vector<PointLight> pointLights;
+    std::vector<PunctualLight> punctualLights;
     std::vector<QuadLight> quadLights;
 
     /// The state a freshly loaded scene is in.
@@ -34,7 +34,7 @@ struct SceneState {
     /// The same emitters and materials (objects may have moved): a light path that meets the
     /// same surfaces carries the same power.
     bool sameLightsAndMaterials(const SceneState& o) const {
-        return materials == o.materials && pointLights == o.pointLights &&
+        return materials == o.materials && punctualLights == o.punctualLights &&
                quadLights == o.quadLights;
     }
 };

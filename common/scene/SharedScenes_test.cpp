@@ -76,7 +76,7 @@ TEST(SharedScenes, CornellBoxesLoadAsBareObjs) {
         }
         EXPECT_EQ(anyEmissive(s), c.emitter);
         // A headlight exactly when there is no emitter.
-        EXPECT_EQ(s.pointLights.size(), c.emitter ? 0u : 1u);
+        EXPECT_EQ(s.punctualLights.size(), c.emitter ? 0u : 1u);
         EXPECT_EQ(bundle.sceneText.find("headlight") != std::string::npos, !c.emitter);
     }
 }
@@ -113,7 +113,7 @@ TEST(SharedScenes, GlossyCornellBoxesLackTheLightMaterial) {
         bool light = false;
         for (const Material& m : s.materials) light = light || m.name == "light";
         EXPECT_TRUE(light);
-        EXPECT_EQ(s.pointLights.size(), 1u) << "nothing emits: a headlight";
+        EXPECT_EQ(s.punctualLights.size(), 1u) << "nothing emits: a headlight";
     }
     // With the Original's light set by a scene file, the box is lit by it.
     const Scene lit = loadSceneFile(test::testdataDir() / "cornell-glossy.json", test::trusted());
@@ -122,7 +122,7 @@ TEST(SharedScenes, GlossyCornellBoxesLackTheLightMaterial) {
             EXPECT_EQ(m.emission, glm::vec3(17, 12, 4));
         }
     }
-    EXPECT_TRUE(lit.pointLights.empty());
+    EXPECT_TRUE(lit.punctualLights.empty());
 }
 
 TEST(SharedScenes, MoriKnob) {
@@ -130,7 +130,7 @@ TEST(SharedScenes, MoriKnob) {
     const Scene s = loadSceneFile(*shared / "mori-knob" / "testObj.obj");
     expectConsistent(s);
     EXPECT_TRUE(anyEmissive(s));
-    EXPECT_TRUE(s.pointLights.empty());
+    EXPECT_TRUE(s.punctualLights.empty());
     bool outerGlass = false;
     for (const Material& m : s.materials) {
         if (m.name == "OuterMat") outerGlass = m.glass;
@@ -147,11 +147,11 @@ TEST(SharedScenes, BunnyGetsAHeadlight) {
     expectConsistent(s);
     EXPECT_EQ(triangleCount(s), 144046u);
     EXPECT_EQ(s.meshes[0].normals.size(), s.meshes[0].positions.size());
-    ASSERT_EQ(s.pointLights.size(), 1u);
-    EXPECT_EQ(s.pointLights[0].name, "headlight");
+    ASSERT_EQ(s.punctualLights.size(), 1u);
+    EXPECT_EQ(s.punctualLights[0].name, "headlight");
     // Auto-framed: the camera looks at the centre of the mesh's bounds from +Z.
     Scene meshOnly = s;
-    meshOnly.pointLights.clear();
+    meshOnly.punctualLights.clear();
     const Bounds3 b = worldBounds(meshOnly);
     EXPECT_NEAR(s.camera.lookAt.x, b.centre().x, 1e-4f);
     EXPECT_GT(s.camera.position.z, b.hi.z);
@@ -189,10 +189,10 @@ TEST(SharedScenes, GltfSamples) {
     }
     EXPECT_TRUE(emit4);
     // LightsPunctualLamp: five point lights, moved with the mesh's transform.
-    ASSERT_EQ(s.pointLights.size(), 5u);
-    EXPECT_EQ(s.pointLights[0].name, "Point");
-    EXPECT_NEAR(s.pointLights[0].position.y, 0.9077973f - 3.0f, 1e-4f);
-    EXPECT_NEAR(s.pointLights[0].intensity.x, 15.0f / (4.0f * 3.14159265f), 1e-4f);
+    ASSERT_EQ(s.punctualLights.size(), 5u);
+    EXPECT_EQ(s.punctualLights[0].name, "Point");
+    EXPECT_NEAR(s.punctualLights[0].position.y, 0.9077973f - 3.0f, 1e-4f);
+    EXPECT_NEAR(s.punctualLights[0].intensity.x, 15.0f / 683.0f, 1e-6f);  // candela / 683
     bool glass = false;
     for (const Material& m : s.materials) glass = glass || m.glass;
     EXPECT_TRUE(glass);
