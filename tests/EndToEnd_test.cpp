@@ -100,6 +100,31 @@ TEST(EndToEnd, TwoClientsRenderTheDefaultSceneExactlyAsOneDoes) {
 // With many lights each point chooses its light samples (the light tree) and its VPLs (by
 // importance, from a pool per set) for itself: still a function of the pixel, the frame and the
 // set only, so the image does not depend on which client rendered which tile.
+// The Cornell box open to a sun behind the camera, with a spot light inside: directional light
+// (direct, VPLs from the disk, caustic photons through the glass ball) and the spot's cone.
+TEST(EndToEnd, ThreeClientsRenderASunAndSpotLitSceneExactlyAsOneDoes) {
+    const fs::path dir = scratchDir("sunlit");
+    const std::string scene = (sourceDir() / "scenes/cornell/sunlit.json").string();
+    const std::vector<std::string> common = {"--scene",  scene,        "--width",  "120",
+                                             "--height", "90",         "--frames", "3",
+                                             "--listen", "127.0.0.1:0"};
+    auto args3 = common, args1 = common;
+    args3.insert(args3.end(), {"--local-clients", "3", "--output", (dir / "three.exr").string()});
+    args1.insert(args1.end(), {"--local-clients", "1", "--output", (dir / "one.exr").string()});
+    const ProcessResult three = runMaster(dir, "three", args3), one = runMaster(dir, "one", args1);
+    ASSERT_EQ(three.exitCode, 0) << three.output;
+    ASSERT_EQ(one.exitCode, 0) << one.output;
+    const Image a = readImage(dir / "three.exr"), b = readImage(dir / "one.exr");
+    expectFinite(a, "three.exr");
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        ASSERT_EQ(a.pixels[i], b.pixels[i]) << "pixel " << i % 120 << "," << i / 120 << " differs";
+    // The sun comes in from behind the camera, to the right and above: the back wall is lit
+    // on its right, and the mirror box (left) casts a shadow on its left.
+    double lit = 0;
+    for (const glm::vec3& p : a.pixels) lit += luminance(p);
+    EXPECT_GT(lit / double(a.pixels.size()), 0.05);
+}
+
 TEST(EndToEnd, ThreeClientsRenderAManyLightSceneExactlyAsOneDoes) {
     const fs::path dir = scratchDir("many-lights");
     const std::string scene = (sourceDir() / "scenes/interior/glossy.json").string();
