@@ -68,7 +68,7 @@ TEST_F(GltfTriangle, Materials) {
 }
 
 TEST_F(GltfTriangle, PunctualLightPlacedByNodesAndMeshTransform) {
-    ASSERT_EQ(scene_->punctualLights.size(), 1u);
+    ASSERT_EQ(scene_->punctualLights.size(), 3u);
     const PunctualLight& l = scene_->punctualLights[0];
     EXPECT_EQ(l.name, "lamp");
     // Node (0,3,0) under a node scaled by 2, then the scene file's translate (10,0,0).
@@ -76,6 +76,23 @@ TEST_F(GltfTriangle, PunctualLightPlacedByNodesAndMeshTransform) {
     // color x candela / 683 (Blender's Standard conversion), intensity = 40 pi.
     expectNear(l.intensity, glm::vec3(40, 20, 10) * (3.14159265f / 683.0f), 1e-5f);
     EXPECT_EQ(l.kind, LightKind::Point);
+}
+
+TEST_F(GltfTriangle, SpotAndDirectionalLightsShineDownTheirNodesMinusZ) {
+    ASSERT_EQ(scene_->punctualLights.size(), 3u);
+    const PunctualLight& spot = scene_->punctualLights[1];
+    EXPECT_EQ(spot.name, "spot");
+    EXPECT_EQ(spot.kind, LightKind::Spot);
+    expectNear(spot.position, {11, 2, 3});  // the node's translation, then the entry's
+    expectNear(spot.direction, {0, 0, -1});
+    expectNear(spot.intensity, glm::vec3(1.0f), 1e-6f);  // 683 cd
+    EXPECT_NEAR(spot.innerDeg, glm::degrees(0.2f), 1e-4f);
+    EXPECT_NEAR(spot.outerDeg, glm::degrees(0.5f), 1e-4f);
+    const PunctualLight& sun = scene_->punctualLights[2];
+    EXPECT_EQ(sun.name, "sun");
+    EXPECT_EQ(sun.kind, LightKind::Directional);
+    expectNear(sun.direction, {0, -1, 0}, 1e-5f);  // -Z turned -90 degrees about X
+    expectNear(sun.intensity, {2, 2, 1}, 1e-5f);   // 1366 lux x colour / 683
 }
 
 TEST(GltfLoader, MissingImageNamesIt) {

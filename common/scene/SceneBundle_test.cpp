@@ -109,7 +109,7 @@ TEST(SceneBundle, SharedScenesRoundTrip) {
 TEST(SceneLoader, BareGltfIsAScene) {
     const auto lit = test::testdataDir() / "gltf" / "triangle.gltf";
     const Scene withLamp = loadSceneFile(lit);
-    ASSERT_EQ(withLamp.punctualLights.size(), 1u);
+    ASSERT_EQ(withLamp.punctualLights.size(), 3u);  // a point, a spot and a sun
     EXPECT_EQ(withLamp.punctualLights[0].name, "lamp");
     expectRoundTrip(lit);
 

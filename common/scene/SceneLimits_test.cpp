@@ -179,15 +179,15 @@ TEST(SceneLimits, MoreThan100000LightsAreRefused) {
 
 TEST(SceneLimits, GltfLightsCountTowardsTheLightLimit) {
     SceneLimits limits;
-    limits.maxLights = 1;
+    limits.maxLights = 3;  // the file has three
     const std::string json = std::string("{") + kCamera +
                              R"(, "meshes": [{"file": "t.gltf"}],
         "lights": [{"type": "point", "position": [0, 0, 0], "intensity": 1}]})";
     EXPECT_CONTAINS(errorOf(json, {{"t.gltf", triangleGltf()}}, limits),
-                    "/lights: 1 lights would exceed the limit of 1 per scene (1 from glTF files)");
+                    "/lights: 1 lights would exceed the limit of 3 per scene (3 from glTF files)");
     limits.maxLights = 0;
     EXPECT_CONTAINS(errorOf(meshes({"t.gltf"}), {{"t.gltf", triangleGltf()}}, limits),
-                    "/meshes/0/file: its 1 lights would exceed the limit of 0 lights per scene");
+                    "/meshes/0/file: its 3 lights would exceed the limit of 0 lights per scene");
 }
 
 TEST(SceneLimits, MtlMaterialsAreCountedBeforeTinyobjloaderReadsThem) {
