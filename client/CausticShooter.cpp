@@ -162,7 +162,7 @@ std::vector<CausticPhoton> CausticShooter::shoot(std::uint32_t frame, std::uint3
                                       {sampler.emission(j, 3), sampler.emission(j, 4)}, origin,
                                       pdfArea))
                 continue;
-            const glm::vec3 power = light.irradiance / (light.pdf * pdfArea * float(photons_));
+            const glm::vec3 power = light.irradiance / (light.select * pdfArea * float(photons_));
             trace(origin, light.direction, power, j, sampler, photons, counters);
             continue;
         }

@@ -35,7 +35,8 @@ inline float nonDeltaProbability(const Lobes& l) {
 /// Follows a path through mirrors and glass from `firstHit`, where a ray along `direction` has
 /// already landed: at every vertex one lobe is chosen (one number from `next()`), and the path
 /// ends at the first vertex whose non-delta part is chosen. Emitters met on the way add
-/// throughput * Le to `emitted`. Nothing when the path leaves the scene, is absorbed, or has
+/// throughput * Le to `emitted`, and so does the sky where the path leaves the scene. Nothing
+/// when the path leaves the scene, is absorbed, or has
 /// not ended after `maxHits` intersections (the first hit counts as one).
 template <typename Next>
 std::optional<ChainEnd> followDeltaChainFrom(const TraceableScene& scene,
@@ -67,7 +68,10 @@ std::optional<ChainEnd> followDeltaChainFrom(const TraceableScene& scene,
         if (isBlack(throughput)) return std::nullopt;
         const glm::vec3 origin =
             scene.offsetOrigin(end.hit.position, end.lobes.faceNormal, direction);
-        if (!scene.intersect(origin, direction, kInfinity, end.hit, counters)) return std::nullopt;
+        if (!scene.intersect(origin, direction, kInfinity, end.hit, counters)) {
+            emitted += throughput * scene.skyRadiance(direction);  // seen through the mirrors
+            return std::nullopt;
+        }
     }
 }
 
@@ -79,9 +83,12 @@ std::optional<ChainEnd> followDeltaChain(const TraceableScene& scene, glm::vec3 
                                          float pathLength, int maxHits, Next&& next,
                                          glm::vec3& emitted, RayCounters& counters) {
     SurfacePoint first;
-    if (maxHits < 1 || !scene.intersect(origin, direction, std::numeric_limits<float>::infinity(),
-                                        first, counters))
+    if (maxHits < 1) return std::nullopt;
+    if (!scene.intersect(origin, direction, std::numeric_limits<float>::infinity(), first,
+                         counters)) {
+        emitted += throughput * scene.skyRadiance(direction);
         return std::nullopt;
+    }
     return followDeltaChainFrom(scene, first, direction, throughput, pathLength, maxHits,
                                 std::forward<Next>(next), emitted, counters);
 }

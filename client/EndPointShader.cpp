@@ -346,7 +346,18 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
     }
     const glm::vec3 origin = scene_.offsetOrigin(x.position, x.faceNormal, w);
     SurfacePoint hit;
-    if (!scene_.intersect(origin, w, tfar, hit, counters)) return;
+    if (!scene_.intersect(origin, w, tfar, hit, counters)) {
+        // The sky seen by the glossy lobe: the BRDF-sampling half of the MIS pair again.
+        if (glossy) {
+            const glm::vec3 sky = scene_.skyRadiance(w);
+            if (!isBlack(sky)) {
+                const float lightPdf = lights_.environmentPdfAt(x.position, b.normal, w);
+                const float mis = powerHeuristic(pdf, float(directSamples_) * lightPdf);
+                sums.glossy += sky * glossyF * (scale * mis);
+            }
+        }
+        return;
+    }
     const glm::vec3 wy = -w;
     const float d2 = hit.distance * hit.distance;
 

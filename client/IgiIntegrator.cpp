@@ -92,9 +92,13 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
     // in order).
     thread_local std::vector<Continuation> continuations;
     continuations.clear();
-    for (int i = 0; i < count; ++i)
+    const bool sky = scene_.environment().present();
+    for (int i = 0; i < count; ++i) {
         if (paths[std::size_t(i)].found)
             splitAtFirstHit(paths[std::size_t(i)], i, results[i], continuations);
+        else if (sky)  // the camera sees the sky, unfiltered
+            results[i].unfiltered += scene_.skyRadiance(paths[std::size_t(i)].direction);
+    }
     traceContinuations(continuations, counters);
     queue.clear();
     std::size_t next = 0;  // continuations are in pixel order
@@ -194,7 +198,10 @@ void IgiIntegrator::followChains(PixelPath& p, int pixel,
     PathRandom random(p.sampler, p.nextNumber);
     for (; next < continuations.size() && continuations[next].pixel == pixel; ++next) {
         const Continuation& c = continuations[next];
-        if (!c.found) continue;
+        if (!c.found) {
+            result.unfiltered += c.weight * scene_.skyRadiance(c.direction);
+            continue;
+        }
         p.ends[c.end] = followDeltaChainFrom(
             scene_, c.hit, c.direction, c.weight, p.hit.distance, settings_.maxEyeDepth,
             [&] { return random.next(); }, result.unfiltered, counters);

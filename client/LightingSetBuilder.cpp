@@ -279,7 +279,7 @@ void LightingSetBuilder::traceLightPaths(const LightPathNumbers& sampler, PathEn
             // Parallel light through the disk across the scene's bounding sphere.
             direction = light.direction;
             origin = lights_.diskOrigin(direction, uDir);
-            beta = light.irradiance * lights_.diskArea() / light.pdf;
+            beta = light.irradiance * lights_.diskArea() / light.select;
         } else if (light.spot) {
             // Uniform in the outer cone, weighted by the ramp.
             direction = Frame(light.normal).toWorld(squareToUniformCone(uDir, light.cosOuter));

@@ -103,6 +103,19 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
                                 : power.back());
         emitters_.push_back(e);
     }
+    if (traceable.environment().present()) {
+        environment_ = &traceable.environment();
+        environmentIndex_ = std::uint32_t(emitters_.size());
+        Emitter e;
+        e.kind = Kind::Environment;
+        emitters_.push_back(e);
+        hasDirectional_ = true;
+        // What crosses the disk of the bounding sphere from every direction: 4 pi A L_mean.
+        const float mean = environment_->meanLuminance();
+        power.push_back(4.0f * kPi * kPi * radius_ * radius_ * mean);
+        // For the tree: a plane's irradiance under it (pi L_mean) at the far sphere's distance.
+        treePower.push_back(4.0f * kPi * kPi * mean * sunDistance * sunDistance);
+    }
     // A sun of 1e5 lux beside a room's lamps would take nearly every light path (or the lamps
     // every one of a dim sky's): when directional lights share the scene with others, half the
     // choices are by power and half uniform over the lights, so none is starved.
@@ -124,6 +137,10 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
             e.kind == Kind::Directional ? center_ - e.normal * (radius_ + sunDistance) : e.p0;
         b.lo = glm::min(p0, glm::min(p0 + e.e1, p0 + e.e2));
         b.hi = glm::max(p0, glm::max(p0 + e.e1, p0 + e.e2));
+        if (e.kind == Kind::Environment) {  // the whole far sphere
+            b.lo = center_ - glm::vec3(radius_ + sunDistance);
+            b.hi = center_ + glm::vec3(radius_ + sunDistance);
+        }
         b.normal = e.normal;
         b.omni = e.isPoint();
         b.power = treePower[i];
@@ -151,6 +168,21 @@ LightSample Lights::pointOn(std::size_t i, float select, glm::vec2 uPoint) const
     const Emitter& e = emitters_[i];
     s.emitted = e.emitted;
     s.isPoint = e.isPoint();
+    s.select = select;
+    if (e.kind == Kind::Environment) {
+        const EnvironmentMap::Sample sky = environment_->sample(uPoint);
+        if (!(sky.pdf > 0)) return s;
+        const float distance = radius_ + kSunDistance * radius_;
+        s.directional = true;
+        s.direction = -sky.toSky;
+        s.irradiance = sky.radiance / sky.pdf;
+        s.position = center_ + sky.toSky * distance;
+        s.normal = s.direction;  // facing the scene
+        s.emitted = sky.radiance;
+        // Area density on the far sphere whose solid angle from the scene is the sky's.
+        s.pdf = select * sky.pdf / (distance * distance);
+        return s;
+    }
     if (e.kind == Kind::Triangle) {
         const glm::vec2 b = squareToUniformTriangle(uPoint);
         s.position = e.p0 + b.x * e.e1 + b.y * e.e2;
@@ -182,6 +214,13 @@ LightSample Lights::pointOn(std::size_t i, float select, glm::vec2 uPoint) const
         s.emitted = s.irradiance * (distance * distance);
     }
     return s;
+}
+
+float Lights::environmentPdfAt(glm::vec3 p, glm::vec3 n, glm::vec3 toSky) const {
+    if (!environment_) return 0.0f;
+    const float selection = choosesPerPoint() ? tree_.probability(p, n, environmentIndex_)
+                                              : distribution_.pdf(environmentIndex_);
+    return selection * environment_->pdf(toSky);
 }
 
 glm::vec3 Lights::diskOrigin(glm::vec3 direction, glm::vec2 u) const {

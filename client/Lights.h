@@ -18,6 +18,10 @@ namespace igi {
 
 /// A point chosen on a light source.
 ///
+/// An environment sample is an area-light sample on a sphere kSunDistance radii away, facing
+/// the scene, whose area density gives the environment's solid-angle density there: receivers
+/// connect to it (and weigh it against BRDF sampling) as to a point on a quad light.
+///
 /// A directional light's sample is a point light far outside the scene (kSunDistance radii
 /// beyond its bounding sphere, in the sampled direction) whose intensity gives the sun's
 /// irradiance at the scene: every receiver connects to it as to a point light, with a parallax
@@ -29,12 +33,16 @@ struct LightSample {
     glm::vec3 emitted{0.0f};  ///< radiance of an area light, intensity (W/sr) of a point light
                               ///< (on the axis for a spot)
     float pdf = 0;            ///< selection probability times 1/area (area lights), or selection
+    float select = 0;         ///< the selection probability alone
     bool isPoint = false;     ///< point, spot or directional: a delta position
     bool spot = false;        ///< emitted times spotRamp(cosOuter, spotScale, cos to the axis)
     float cosOuter = -1.0f, spotScale = 0.0f;
+    /// A directional light or the environment: parallel light from infinitely far away.
     bool directional = false;
-    glm::vec3 direction{0.0f};   ///< directional: the way its light travels, as sampled
-    glm::vec3 irradiance{0.0f};  ///< directional: on a plane facing `direction`
+    glm::vec3 direction{0.0f};  ///< directional: the way its light travels, as sampled
+    /// Directional: on a plane facing `direction`, divided by the density of `direction` (for
+    /// the environment: radiance over its solid-angle density).
+    glm::vec3 irradiance{0.0f};
 };
 
 /// How far (in scene radii) past the scene a directional light's sample sits.
@@ -76,6 +84,9 @@ class Lights {
     double totalPower() const { return distribution_.total(); }
     /// Whether some light is directional (light paths then start on diskOrigin's disk).
     bool hasDirectional() const { return hasDirectional_; }
+    /// The density (solid angle) with which sampleAt(p, n) picks the environment in the
+    /// direction `toSky`, for multiple importance sampling; 0 without one.
+    float environmentPdfAt(glm::vec3 p, glm::vec3 n, glm::vec3 toSky) const;
 
     /// Where a light path of a directional light travelling along unit `direction` starts: a
     /// point, uniform by u, on the disk of the scene's bounding sphere's radius that faces
@@ -84,7 +95,7 @@ class Lights {
     float diskArea() const;
 
   private:
-    enum class Kind : std::uint8_t { Triangle, Point, Spot, Directional };
+    enum class Kind : std::uint8_t { Triangle, Point, Spot, Directional, Environment };
     struct Emitter {
         glm::vec3 p0{0.0f}, e1{0.0f}, e2{0.0f};  ///< triangle p0, p0+e1, p0+e2, or the point
         glm::vec3 normal{0.0f};   ///< a triangle's; a spot's axis; a directional light's direction
@@ -95,7 +106,7 @@ class Lights {
         /// Directional: 1 - cos of the disk's half-angle (0: a delta), and the factor from
         /// the irradiance to the estimate of one direction sampled uniformly in that cone.
         float oneMinusCos = 0.0f, sunScale = 1.0f;
-        bool isPoint() const { return kind != Kind::Triangle; }
+        bool isPoint() const { return kind != Kind::Triangle && kind != Kind::Environment; }
     };
 
     LightSample pointOn(std::size_t emitter, float selection, glm::vec2 uPoint) const;
@@ -104,7 +115,9 @@ class Lights {
     Distribution1D distribution_;
     LightTree tree_;  ///< empty when receivers choose by power
     std::unordered_map<std::uint64_t, std::uint32_t> triangleToEmitter_;
-    glm::vec3 center_{0.0f};  ///< the scene's bounding sphere
+    const EnvironmentMap* environment_ = nullptr;  ///< when the scene has a sky
+    std::uint32_t environmentIndex_ = 0;           ///< its emitter
+    glm::vec3 center_{0.0f};                       ///< the scene's bounding sphere
     float radius_ = 1.0f;
     bool hasDirectional_ = false;
 };

@@ -47,7 +47,18 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
     glm::vec3 lastPosition(0.0f), lastNormal(0.0f);  // where it was sampled (the light tree's)
     SurfacePoint hit;
     for (int depth = 0; depth < settings_.maxPathLength; ++depth) {
-        if (!scene_.intersect(origin, direction, kInfinity, hit, counters)) break;
+        if (!scene_.intersect(origin, direction, kInfinity, hit, counters)) {
+            // The sky: seen directly and through mirrors whole, else weighed against the
+            // light samples that could have chosen it.
+            const glm::vec3 sky = scene_.skyRadiance(direction);
+            if (isBlack(sky)) break;
+            float weight = 1.0f;
+            if (lastWasNonDelta)
+                weight = powerHeuristic(
+                    lastPdf, lights_.environmentPdfAt(lastPosition, lastNormal, direction));
+            radiance += beta * sky * weight;
+            break;
+        }
         const glm::vec3 wo = -direction;
         const glm::vec3 le = emittedToward(hit, wo);
         if (!isBlack(le)) {

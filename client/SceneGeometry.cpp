@@ -19,7 +19,7 @@ struct SceneGeometry::FlatScene {
 };
 
 SceneGeometry::SceneGeometry(const EmbreeDevice& device, const Scene& scene)
-    : device_(device), scene_(scene) {
+    : device_(device), scene_(scene), environment_(scene.environment, scene.textures) {
     for (const Mesh& mesh : scene.meshes) {
         meshes_.push_back(mesh.triangles.empty() ? nullptr : build(mesh));
         triangleCount_ += mesh.triangles.size();

@@ -9,6 +9,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "EmbreeDevice.h"
+#include "EnvironmentMap.h"
 #include "scene/Scene.h"
 #include "scene/SceneState.h"
 
@@ -42,6 +43,8 @@ class SceneGeometry {
 
     const EmbreeDevice& device() const { return device_; }
     const Scene& scene() const { return scene_; }
+    /// The sky, with its sampling distribution (built once: a map's can take a while).
+    const EnvironmentMap& environment() const { return environment_; }
     /// The Embree scene of mesh i, or null for a mesh without triangles.
     RTCScene mesh(std::size_t i) const { return meshes_[i]; }
     /// The unit square (0,0,0), (1,0,0), (1,1,0), (0,1,0) as two counter-clockwise triangles.
@@ -79,6 +82,7 @@ class SceneGeometry {
 
     const EmbreeDevice& device_;
     const Scene& scene_;
+    EnvironmentMap environment_;
     std::vector<RTCScene> meshes_;
     Mesh unitQuad_;
     RTCScene unitQuadScene_ = nullptr;

@@ -117,6 +117,11 @@ class TraceableScene {
     /// The centre of the scene's bounds: with diagonal() / 2 as radius, a sphere around it all
     /// (the disk that light from infinitely far away enters through).
     glm::vec3 center() const { return center_; }
+    /// What a ray that leaves the scene sees.
+    const EnvironmentMap& environment() const { return geometry_.environment(); }
+    glm::vec3 skyRadiance(glm::vec3 direction) const {
+        return geometry_.environment().radiance(direction);
+    }
     /// Area-weighted mean Lambertian albedo of the diffuse surfaces (the fraction of light paths
     /// continued at each diffuse bounce in the quasi-random walk).
     float meanAlbedo() const { return meanAlbedo_; }

@@ -5,6 +5,7 @@
 
 #include "render/RenderSettings.h"
 #include "scene/Camera.h"
+#include "scene/Environment.h"
 #include "scene/Light.h"
 #include "scene/Material.h"
 #include "scene/Mesh.h"
@@ -30,6 +31,7 @@ struct Scene {
     std::vector<Mesh> meshes;
     std::vector<PunctualLight> punctualLights;
     std::vector<QuadLight> quadLights;
+    Environment environment;
     RenderSettings render;
 };
 

@@ -38,7 +38,8 @@ std::string meshSceneText(const std::string& meshName, bool headlight) {
 }
 
 bool hasEmitter(const Scene& scene) {
-    if (!scene.quadLights.empty() || !scene.punctualLights.empty()) return true;
+    if (!scene.quadLights.empty() || !scene.punctualLights.empty() || scene.environment.present())
+        return true;
     return std::any_of(scene.materials.begin(), scene.materials.end(),
                        [](const Material& m) { return m.isEmissive(); });
 }

@@ -18,7 +18,8 @@ Scene parseScene(const std::string& sceneText, const std::string& sceneName, Fil
     }
     const nlohmann::json json = parseJsonText(sceneText, sceneName);
     const JsonNode root(json, sceneName, "");
-    root.checkKeys({"camera", "image", "meshes", "lights", "materials", "render", "headlight"});
+    root.checkKeys(
+        {"camera", "image", "meshes", "lights", "environment", "materials", "render", "headlight"});
 
     Scene scene;
     scene.sourcePath = sceneName;
@@ -28,6 +29,7 @@ Scene parseScene(const std::string& sceneText, const std::string& sceneName, Fil
     if (auto n = root.find("meshes")) loadMeshes(*n, assets);
     if (auto n = root.find("materials")) applyMaterialOverrides(*n, assets);
     if (auto n = root.find("lights")) parseLights(*n, scene, limits.maxLights);
+    if (auto n = root.find("environment")) parseEnvironment(*n, assets);
     if (auto n = root.find("render"))
         applyRenderSettingsJson(n->value(), scene.render, sceneName, n->path());
     if (auto n = root.find("camera")) {

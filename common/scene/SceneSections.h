@@ -33,6 +33,10 @@ void parseLights(const JsonNode& node, Scene& scene,
 
 /// "meshes": [{file, name, transform}]: loads every file into scene.meshes (and its glTF
 /// lights into scene.punctualLights).
+/// The "environment" section: a constant sky or an equirectangular map (its texture decoded
+/// into the scene's textures; non-finite texels are an error naming the file and the texel).
+void parseEnvironment(const JsonNode& node, SceneAssets& assets);
+
 void loadMeshes(const JsonNode& node, SceneAssets& assets);
 
 /// "materials": {name: {overrides}}, applied to every loaded material of that name.

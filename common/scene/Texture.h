@@ -16,6 +16,10 @@ struct Texture {
     std::vector<glm::vec3> texels;  ///< row-major; row 0 is the top of the image (v = 1)
     glm::vec3 average{0.0f};        ///< mean texel, used for the scene's mean albedo
     glm::vec3 minimum{0.0f};        ///< per channel: bounds a roughness map's sharpest lobe
+    /// The first texel (row-major index) whose file value was not finite, or -1; such values
+    /// are read as 0, and an environment map refuses them (EnvironmentJson.cpp).
+    long long firstNonFinite = -1;
+    float nonFiniteValue = 0.0f;  ///< its value
 
     /// Bilinear lookup with wrapping; (u, v) as in OBJ, v = 0 at the bottom.
     glm::vec3 sample(glm::vec2 uv) const;

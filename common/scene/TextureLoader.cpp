@@ -143,6 +143,10 @@ void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture,
     const bool linear = data || isLinear(spec);
     for (std::size_t i = 0; i < count; ++i) {
         texture.texels[i] = rgbAt(pixels, i, channels, [&](float c) {
+            if (!std::isfinite(c) && texture.firstNonFinite < 0) {
+                texture.firstNonFinite = static_cast<long long>(i);
+                texture.nonFiniteValue = c;
+            }
             c = std::isfinite(c) ? std::max(c, 0.0f) : 0.0f;
             return linear ? c : srgbToLinear(c);
         });
