@@ -125,6 +125,30 @@ TEST(EndToEnd, ThreeClientsRenderASunAndSpotLitSceneExactlyAsOneDoes) {
     EXPECT_GT(lit / double(a.pixels.size()), 0.05);
 }
 
+// Objects on a floor under an HDR map and a sun: the map travels to the clients with the scene,
+// the camera sees it above the floor, and every client lights with it alike.
+TEST(EndToEnd, ThreeClientsRenderASceneUnderAnEnvironmentMapExactlyAsOneDoes) {
+    const fs::path dir = scratchDir("sky");
+    const std::string scene = (sourceDir() / "scenes/sky/sky.json").string();
+    const std::vector<std::string> common = {"--scene",  scene,        "--width",  "120",
+                                             "--height", "90",         "--frames", "3",
+                                             "--listen", "127.0.0.1:0"};
+    auto args3 = common, args1 = common;
+    args3.insert(args3.end(), {"--local-clients", "3", "--output", (dir / "three.exr").string()});
+    args1.insert(args1.end(), {"--local-clients", "1", "--output", (dir / "one.exr").string()});
+    const ProcessResult three = runMaster(dir, "three", args3), one = runMaster(dir, "one", args1);
+    ASSERT_EQ(three.exitCode, 0) << three.output;
+    ASSERT_EQ(one.exitCode, 0) << one.output;
+    const Image a = readImage(dir / "three.exr"), b = readImage(dir / "one.exr");
+    expectFinite(a, "three.exr");
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        ASSERT_EQ(a.pixels[i], b.pixels[i]) << "pixel " << i % 120 << "," << i / 120 << " differs";
+    // The top rows see the studio's backdrop, which is neither black nor one flat colour.
+    const glm::vec3 left = a.at(2, 2), right = a.at(117, 2);
+    EXPECT_GT(luminance(left), 0.01f);
+    EXPECT_NE(left, right);
+}
+
 TEST(EndToEnd, ThreeClientsRenderAManyLightSceneExactlyAsOneDoes) {
     const fs::path dir = scratchDir("many-lights");
     const std::string scene = (sourceDir() / "scenes/interior/glossy.json").string();
