@@ -1,5 +1,6 @@
 #include "TraceableScene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -384,7 +385,7 @@ void TraceableScene::applyNormalMap(const MeshData& m, glm::uvec3 t, float u, fl
 }
 
 std::vector<TraceableScene::WorldTriangle> TraceableScene::trianglesWhere(
-    bool (*predicate)(const Material&)) const {
+    const std::function<bool(const Material&)>& predicate) const {
     std::vector<WorldTriangle> result;
     for (std::uint32_t mi = 0; mi < meshes_.size(); ++mi) {
         const Mesh& mesh = *meshes_[mi].mesh;
@@ -404,7 +405,19 @@ std::vector<TraceableScene::WorldTriangle> TraceableScene::emissiveTriangles() c
 }
 
 std::vector<TraceableScene::WorldTriangle> TraceableScene::specularTriangles() const {
-    return trianglesWhere([](const Material& m) { return m.isSpecular(); });
+    // A GGX material whose roughness map reaches under the mirror threshold somewhere has
+    // mirror texels (they take the mirror path): its triangles are caustic targets too, or
+    // the light those texels focus would have no photons.
+    return trianglesWhere([this](const Material& m) {
+        if (m.isSpecular()) return true;
+        if (m.reflection != Reflection::Ggx || m.metallicRoughnessTexture < 0 || !textures_ ||
+            std::size_t(m.metallicRoughnessTexture) >= textures_->size())
+            return false;
+        const float least =
+            m.roughness *
+            std::clamp((*textures_)[m.metallicRoughnessTexture].minimum.y, 0.0f, 1.0f);
+        return least * least < kMinGgxAlpha;
+    });
 }
 
 void TraceableScene::computeMeanAlbedo(const std::vector<Texture>& textures) {

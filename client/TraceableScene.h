@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <type_traits>
 #include <utility>
@@ -156,7 +157,8 @@ class TraceableScene {
     /// `n` is the unit interpolated normal (or the face's) before it was turned to ng's side.
     void applyNormalMap(const MeshData& m, glm::uvec3 t, float u, float v, glm::vec3 n,
                         SurfacePoint& hit) const;
-    std::vector<WorldTriangle> trianglesWhere(bool (*predicate)(const Material&)) const;
+    std::vector<WorldTriangle> trianglesWhere(
+        const std::function<bool(const Material&)>& predicate) const;
     /// The box (lowest, highest corner) around every object's bounds as placed.
     std::pair<glm::vec3, glm::vec3> placedBounds() const;
     void computeMeanAlbedo(const std::vector<Texture>& textures);

@@ -159,3 +159,35 @@ TEST(TraceableScene, FlatAndInstancedLayoutsFindTheSameSurfaces) {
 
 }  // namespace
 }  // namespace igi
+
+namespace igi {
+namespace {
+
+// A rough GGX metal whose roughness map is 0 on some texels: those texels are mirrors, so its
+// triangles must be caustic targets (review of issue 34: the factor alone hid them).
+TEST(TraceableScene, AGgxMaterialWithMirrorTexelsIsASpecularTarget) {
+    Scene scene;
+    Material metal = testing::diffuse(glm::vec3(0.8f));
+    metal.reflection = Reflection::Ggx;
+    metal.metallic = 1.0f;
+    metal.roughness = 1.0f;
+    scene.materials.push_back(metal);
+    scene.meshes.push_back(testing::makeQuad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, 0));
+    EmbreeDevice device;
+    {
+        SceneGeometry geometry(device, scene);
+        EXPECT_TRUE(TraceableScene(geometry).specularTriangles().empty());
+    }
+    Texture map;
+    map.width = 2;
+    map.height = 1;
+    map.texels = {glm::vec3(0, 0.0f, 1), glm::vec3(0, 1.0f, 1)};  // green: roughness
+    map.minimum = glm::vec3(0.0f, 0.0f, 1.0f);
+    scene.textures.push_back(map);
+    scene.materials[0].metallicRoughnessTexture = 0;
+    SceneGeometry geometry(device, scene);
+    EXPECT_EQ(TraceableScene(geometry).specularTriangles().size(), 2u);
+}
+
+}  // namespace
+}  // namespace igi
