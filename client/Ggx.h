@@ -30,7 +30,11 @@ constexpr float kMinAlpha = kMinGgxAlpha;
 inline float distribution(float alpha, float cosH) {
     if (cosH <= 0) return 0.0f;
     const float a2 = alpha * alpha;
-    const float d = cosH * cosH * (a2 - 1.0f) + 1.0f;
+    // cos^2 (a^2 - 1) + 1 as sin^2 + a^2 cos^2: near the peak of a smooth lobe (a^2 down to
+    // 1e-6) the first form cancels to a few digits; the clamp keeps a rounded cos above 1
+    // from making sin^2 negative.
+    const float c = std::min(cosH, 1.0f);
+    const float d = (1.0f - c) * (1.0f + c) + a2 * c * c;
     return a2 / (kPi * d * d);
 }
 

@@ -250,3 +250,22 @@ TEST(GgxBrdf, MetallicRoughnessMapsToTheLobes) {
 
 }  // namespace
 }  // namespace igi
+
+namespace igi {
+namespace {
+
+// Near the peak of the smoothest lobe the distribution keeps its digits: the form
+// cos^2 (a^2 - 1) + 1 lost about 2 % there to cancellation (review of issue 34).
+TEST(GgxPrecision, TheDistributionNearItsPeakMatchesDoublePrecision) {
+    const float alpha = ggx::kMinAlpha;
+    for (const float c : {1.0f - 0x1p-20f, 1.0f - 0x1p-22f, 1.0f - 0x1p-18f, 1.0f}) {
+        const double a2 = double(alpha) * double(alpha), cd = double(c);
+        const double d = (1.0 - cd * cd) + a2 * cd * cd;
+        const double expected = a2 / (3.14159265358979323846 * d * d);
+        EXPECT_NEAR(ggx::distribution(alpha, c) / expected, 1.0, 1e-4) << "cos " << c;
+    }
+    EXPECT_TRUE(std::isfinite(ggx::distribution(alpha, 1.0000001f)));  // a rounded cosine
+}
+
+}  // namespace
+}  // namespace igi
