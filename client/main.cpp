@@ -5,6 +5,7 @@
 
 #include "ClientSession.h"
 #include "util/HostPort.h"
+#include "util/LogLevels.h"
 
 int main(int argc, char** argv) {
     CLI::App app{"igi-client: renders tiles for an igi-master"};
@@ -22,8 +23,9 @@ int main(int argc, char** argv) {
     app.add_option("--read-timeout", options.readTimeoutSeconds,
                    "seconds of silence after which the master is considered gone")
         ->capture_default_str();
-    app.add_option("--log-level", logLevel, "trace, debug, info, warn, error")
-        ->capture_default_str();
+    app.add_option("--log-level", logLevel, "trace, debug, info, warn, error, critical or off")
+        ->capture_default_str()
+        ->transform(CLI::IsMember(igi::logLevelNames(), CLI::ignore_case));
     app.add_flag("--replay", options.replay,
                  "render each tile once, then resend that result whenever the tile is asked for "
                  "again (to measure how many pixels per second the master can take)");

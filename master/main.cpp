@@ -6,10 +6,14 @@
 #include <boost/asio/ip/address.hpp>
 #include <nlohmann/json.hpp>
 
+#include <charconv>
+#include <cstdint>
+
 #include "Master.h"
 #include "ProgressLine.h"
 #include "SequencePath.h"
 #include "util/HostPort.h"
+#include "util/LogLevels.h"
 
 namespace {
 
@@ -27,6 +31,19 @@ nlohmann::json parsePair(const std::string& text, const std::string& option) {
     } catch (const std::exception&) {
         throw CLI::ValidationError(option, "expected NxM, for example 3x3, got '" + text + "'");
     }
+}
+
+// A seed: all of 0 .. 2^64 - 1, digits only.
+std::uint64_t parseSeed(const std::string& text) {
+    std::uint64_t seed = 0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, seed);
+    if (text.empty() || ec != std::errc() || ptr != end)
+        throw CLI::ValidationError("--seed",
+                                   "expected a whole number from 0 to "
+                                   "18446744073709551615, got '" +
+                                       text + "'");
+    return seed;
 }
 
 }  // namespace
@@ -89,8 +106,9 @@ int main(int argc, char** argv) {
     app.add_option("--height", o.height, "image height (overrides the scene)")
         ->check(CLI::Range(1, 16384));
     auto* exposure = app.add_option("--exposure", o.exposure, "exposure of the PNG in stops");
-    app.add_option("--log-level", logLevel, "trace, debug, info, warn, error")
-        ->capture_default_str();
+    app.add_option("--log-level", logLevel, "trace, debug, info, warn, error, critical or off")
+        ->capture_default_str()
+        ->transform(CLI::IsMember(igi::logLevelNames(), CLI::ignore_case));
 
     // Render settings: same names, ranges and checks as the scene file's "render" section.
     nlohmann::json render = nlohmann::json::object();
@@ -217,9 +235,12 @@ int main(int argc, char** argv) {
         {"--photonmap-gather", "photonmap_gather", true,
          "--gi photonmap: final gather rays per site"},
         {"--tile-size", "tile_size", true, "tile edge in pixels of one k"},
-        {"--seed", "seed", true, "session seed of every random bit vector"},
     };
     for (auto& n : numerics) n.option = app.add_option(n.flag, n.value, n.help);
+    // An integer of its own: through a double, seeds above 2^53 lost bits.
+    std::string seedText;
+    auto* seedOpt = app.add_option("--seed", seedText,
+                                   "session seed of every random bit vector, 0 .. 2^64 - 1");
     app.add_option(
         "--secret-file", o.secretFile,
         "the cluster secret (else the IGI_SECRET environment variable; with local clients only, "
@@ -273,6 +294,7 @@ int main(int argc, char** argv) {
             else
                 render[n.key] = n.value;
         }
+        if (seedOpt->count()) render["seed"] = parseSeed(seedText);
         if (noAccumulate) render["accumulate"] = false;
     } catch (const CLI::Error& e) {
         return app.exit(e);

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "Process.h"
+#include "Session.h"
 #include "image/ImageIO.h"
 #include "math/Color.h"
 
@@ -270,6 +271,55 @@ TEST(EndToEnd, ABareObjFromAnotherFolderRendersWithoutASharedDisk) {
     for (const auto& p : image.pixels) sum += luminance(p);
     EXPECT_GT(sum / double(image.pixels.size()), 0.01);  // lit by its own emissive light
     fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace igi
+
+namespace igi {
+namespace {
+
+// Issue 40: an unknown --log-level silenced every message, errors included; --seed went
+// through a double and refused 2^63 .. 2^64 - 1 with a wrong message.
+TEST(CommandLine, LogLevelsAreCheckedAndSeedsAreWholeSixtyFourBitNumbers) {
+    const fs::path dir = scratchDir("command-line");
+    auto args = sceneArgs(1);
+    args.resize(args.size() - 2);  // its --log-level info: each run below gives its own
+    args.insert(args.end(), {"--local-clients", "1"});
+    auto badLevel = args;
+    badLevel.insert(badLevel.end(), {"--log-level", "verbose"});
+    const ProcessResult level = runProcess(masterCommand(badLevel), dir / "level.log");
+    EXPECT_NE(level.exitCode, 0);
+    EXPECT_NE(level.output.find("--log-level"), std::string::npos) << level.output;
+    EXPECT_NE(level.output.find("verbose"), std::string::npos) << level.output;
+    EXPECT_EQ(level.output.find("At Most 1"), std::string::npos) << level.output;
+    const ProcessResult client =
+        runProcess(clientCommand({"--log-level", "debugg"}), dir / "client.log");
+    EXPECT_NE(client.exitCode, 0);
+    EXPECT_NE(client.output.find("--log-level"), std::string::npos) << client.output;
+
+    auto upper = args;
+    upper.insert(upper.end(), {"--log-level", "WARN", "--seed", "18446744073709551615", "--output",
+                               (dir / "max.exr").string()});
+    const ProcessResult max = runProcess(masterCommand(upper), dir / "max.log");
+    ASSERT_EQ(max.exitCode, 0) << max.output;
+    EXPECT_EQ(max.output.find("[info]"), std::string::npos) << "WARN hides info lines";
+    auto below = args;
+    below.insert(below.end(),
+                 {"--seed", "18446744073709551614", "--output", (dir / "below.exr").string()});
+    ASSERT_EQ(runProcess(masterCommand(below), dir / "below.log").exitCode, 0);
+    // Seeds that differ in their lowest bit, above 2^53, give different images.
+    const Image a = readImage(dir / "max.exr"), b = readImage(dir / "below.exr");
+    EXPECT_NE(a.pixels, b.pixels);
+    for (const char* bad : {"-1", "18446744073709551616", "1e30", "12x"}) {
+        auto wrong = args;
+        wrong.insert(wrong.end(), {"--seed", bad});
+        const ProcessResult r = runProcess(masterCommand(wrong), dir / "bad-seed.log");
+        EXPECT_NE(r.exitCode, 0) << bad;
+        EXPECT_NE(r.output.find("expected a whole number from 0 to 18446744073709551615"),
+                  std::string::npos)
+            << r.output;
+    }
 }
 
 }  // namespace
