@@ -26,7 +26,7 @@ PT_SPP=${PT_SPP:-16}
 THREADS=${THREADS:-2}
 OUT=${OUT:-$root/build/lights_cycles}
 SCENES=${SCENES:-"cornell/sunlit sky/sky"}
-bin="$root/build/bin"
+bin=${BIN:-$root/build/bin}  # BIN: binaries built elsewhere from the same sources
 
 if ! command -v blender >/dev/null; then
   sudo=""
