@@ -20,6 +20,22 @@ with explicit Cycles shaders so that materials mean the same thing in both rende
   glass -> Glass BSDF "Sharp" with our IOR and white tint; glossy -> Diffuse + Glossy (GGX with
   roughness from the Phong exponent: an approximation); emission -> Emission on the front face
   only (Cycles emits from both sides; we do not), plus the diffuse part.
+Lights (igi_scene.flatten(..., punctual_lights=True)):
+  quad -> a one-sided emissive mesh (above).
+  point (intensity I, W/sr) -> POINT of power 4 pi I W, radius 0 (Cycles' point light of power
+    P gives P / (4 pi) W/sr: checked on a diffuse floor against I cos^3 / h^2 albedo / pi, 0.1 %).
+  spot -> SPOT of the same power on its axis, radius 0, spot_size = 2 outer, spot_blend =
+    (cos inner - cos outer) / (1 - cos outer), so Cycles' ramp spans the same cosines. The ramp
+    is not ours: Cycles (3.4) multiplies by smoothstep over that span, ours (glTF's) by t^2 with t
+    linear in the cosine, and Cycles 3.4 also multiplies a spot by cos a (a from the axis: 2 %
+    less at 11 degrees, 13 % at 30). A spot-lit Cycles image is a reference only up to that.
+  directional (irradiance E, W/m^2, travelling along `direction`) -> SUN of strength E aimed
+    along `direction`, angle = angle_deg. Unlike ours, Cycles' sun disk is visible to rays that
+    leave the scene through mirrors and glass.
+  environment -> world Background of strength 1: a constant colour, or an Environment Texture
+    (equirectangular, Closest, linear colour space) times `scale`, looked up through a Mapping
+    node that turns our Y-up directions into Blender's (x, -z, y) and then by -rotate_deg
+    about Blender's Z (our +Y).
 Film: box pixel filter of 1 pixel (each sample uniform in its pixel, as ours), no denoising, no
 adaptive sampling, no clamping, no filter-glossy, caustics on, 16 bounces like our reference.
 Colour: EXR is written scene-linear (no view transform); Blender's working space is linear
@@ -139,6 +155,96 @@ def _camera(cam, width, height):
     bpy.context.scene.camera = obj
 
 
+def _colour_and_strength(rgb):
+    """A Blender light's colour (max channel 1) and strength for per-channel values."""
+    m = max(rgb)
+    if m <= 0:
+        return (0.0, 0.0, 0.0), 0.0
+    return tuple(c / m for c in rgb), m
+
+
+def _aim(obj, direction):
+    """Turns a light so that its local -Z (where Blender's sun and spot shine) is `direction`."""
+    import mathutils
+
+    d = mathutils.Vector(direction).normalized()
+    obj.rotation_euler = (-d).to_track_quat("Z", "Y").to_euler()
+
+
+def _punctual_light(light):
+    """Our point, spot and directional lights as Blender lights (module docstring)."""
+    import math
+
+    kind = light["type"]
+    if kind == "directional":
+        data = bpy.data.lights.new(light["name"], "SUN")
+        colour, data.energy = _colour_and_strength(light["irradiance"])  # W/m^2, as ours
+        data.angle = math.radians(light["angle_deg"])
+    else:
+        data = bpy.data.lights.new(light["name"], "POINT" if kind == "point" else "SPOT")
+        colour, strength = _colour_and_strength(light["intensity"])
+        # Blender's point and spot power P (W) gives intensity P / (4 pi) W/sr (on a spot's axis).
+        data.energy = 4.0 * math.pi * strength
+        data.shadow_soft_size = 0.0
+        if kind == "spot":
+            outer, inner = math.radians(light["outer_deg"]), math.radians(light["inner_deg"])
+            data.spot_size = 2.0 * outer
+            # Cycles ramps with smoothstep over cos a from cos(outer) to cos(outer) + blend (1 -
+            # cos(outer)); glTF's (ours) is t^2 over [cos outer, cos inner]. Same end points:
+            data.spot_blend = (math.cos(inner) - math.cos(outer)) / (1.0 - math.cos(outer))
+            data.show_cone = False
+    data.color = colour
+    data.cycles.cast_shadow = True
+    data.cycles.max_bounces = 1024
+    obj = bpy.data.objects.new(light["name"], data)
+    if kind != "directional":
+        obj.location = light["position"]
+    if kind != "point":
+        _aim(obj, light["direction"])
+    bpy.context.scene.collection.objects.link(obj)
+
+
+def _world(environment):
+    """Black, a constant sky, or an equirectangular map oriented as ours (module docstring)."""
+    import math
+
+    world = bpy.data.worlds.new("environment")
+    world.use_nodes = True
+    nodes, links = world.node_tree.nodes, world.node_tree.links
+    background = nodes["Background"]
+    if environment is None:
+        background.inputs["Strength"].default_value = 0.0
+    elif "radiance" in environment:
+        background.inputs["Color"].default_value = _rgba(environment["radiance"])
+        background.inputs["Strength"].default_value = 1.0
+    else:
+        coords = nodes.new("ShaderNodeTexCoord")
+        mapping = nodes.new("ShaderNodeMapping")
+        mapping.vector_type = "POINT"
+        # Our scene goes into Blender unchanged (our Y is Blender's Z axis here), but the map's
+        # orientation is Blender's once the glTF importer's axes apply: Blender (x, y, z) =
+        # ours (x, -z, y), i.e. a +90 degree turn about X. Then the sky turned by rotate_deg
+        # about +Y (Blender +Z) is looked up at the direction turned back: Rz(-r) Rx(90).
+        # The Mapping node's Euler rotation is XYZ (Rz Ry Rx applied to the vector).
+        mapping.inputs["Rotation"].default_value = (math.radians(90.0), 0.0,
+                                                    -math.radians(environment["rotate_deg"]))
+        tex = nodes.new("ShaderNodeTexEnvironment")
+        tex.image = bpy.data.images.load(environment["file"])
+        tex.image.colorspace_settings.name = "Linear"
+        tex.interpolation = "Closest"
+        tex.projection = "EQUIRECTANGULAR"
+        scale = nodes.new("ShaderNodeMixRGB")
+        scale.blend_type = "MULTIPLY"
+        scale.inputs["Fac"].default_value = 1.0
+        scale.inputs["Color2"].default_value = _rgba(environment["scale"])
+        links.new(coords.outputs["Generated"], mapping.inputs["Vector"])
+        links.new(mapping.outputs["Vector"], tex.inputs["Vector"])
+        links.new(tex.outputs["Color"], scale.inputs["Color1"])
+        links.new(scale.outputs["Color"], background.inputs["Color"])
+        background.inputs["Strength"].default_value = 1.0
+    return world
+
+
 def main(argv):
     until, max_spp = None, 65536
     if "--max-spp" in argv:
@@ -151,7 +257,7 @@ def main(argv):
         del argv[i:i + 2]
     scene_path, prefix, width, height, threads = argv[0], argv[1], int(argv[2]), int(argv[3]), int(argv[4])
     spps = [int(a) for a in argv[5:]] or [1]
-    flat = igi_scene.flatten(scene_path, width, height, drop_duplicate_faces=True)
+    flat = igi_scene.flatten(scene_path, width, height, drop_duplicate_faces=True, punctual_lights=True)
     if flat["dropped_duplicate_faces"]:
         print(f"cycles: dropped {flat['dropped_duplicate_faces']} face(s) repeating another face's corners", flush=True)
 
@@ -165,13 +271,12 @@ def main(argv):
         p = [c, [a + b for a, b in zip(c, e1)], [a + b + d for a, b, d in zip(c, e1, e2)], [a + b for a, b in zip(c, e2)]]
         # Vertex order c, c+e1, c+e1+e2, c+e2: Blender's face normal is cross(e1, e2), our front.
         _add_mesh(f"quad_light{i}", p, [[0, 1, 2], [0, 2, 3]], None, _quad_material(q["radiance"]))
+    for light in flat["punctual_lights"]:
+        _punctual_light(light)
     _camera(flat["camera"], width, height)
 
     scene = bpy.context.scene
-    world = bpy.data.worlds.new("black")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
-    scene.world = world
+    scene.world = _world(flat["environment"])
     scene.render.engine = "CYCLES"
     cycles = scene.cycles
     cycles.device = "CPU"

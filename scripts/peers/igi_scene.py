@@ -14,6 +14,10 @@ Output of `flatten(path)` (also written as JSON by `python3 igi_scene.py scene o
   meshes:    [{name, material, positions: [[x,y,z]], normals: [[x,y,z]] or None,
                triangles: [[i,j,k]]}]   (one entry per material and source mesh)
   quad_lights: [{corner, edge1, edge2, radiance}]   (emit towards cross(edge1, edge2))
+  punctual_lights (only with punctual_lights=True): [{type: point|spot|directional, name,
+               position, intensity (W/sr), direction (normalized, the way light travels),
+               outer_deg, inner_deg (spot), irradiance (W/m^2), angle_deg (directional)}]
+  environment: None, {radiance} or {file (absolute path), scale, rotate_deg}
   bounds:    [[minx,miny,minz],[maxx,maxy,maxz]]
 """
 
@@ -200,10 +204,12 @@ def _frame_camera(bounds, width, height):
             "up": [0.0, 1.0, 0.0], "fov_y": 45.0}
 
 
-def flatten(scene_path, width=None, height=None, drop_duplicate_faces=False):
+def flatten(scene_path, width=None, height=None, drop_duplicate_faces=False, punctual_lights=False):
     """The scene as world-space triangles (see the module's docstring). With
     `drop_duplicate_faces`, faces that repeat another face's corners are left out (read_obj);
-    their number is returned as "dropped_duplicate_faces"."""
+    their number is returned as "dropped_duplicate_faces". With `punctual_lights` (a peer that
+    can render them: Cycles), point, spot and directional lights and the environment are
+    returned too; without it they are an error, as before."""
     if scene_path.lower().endswith(".obj"):
         spec = {"meshes": [{"file": os.path.basename(scene_path)}]}
     else:
@@ -232,12 +238,37 @@ def flatten(scene_path, width=None, height=None, drop_duplicate_faces=False):
         for key, value in override.items():
             materials[name][key] = value if key in ("type", "ior", "phong_exponent") else _vec(value)
 
-    quads = []
+    quads, punctual = [], []
     for light in spec.get("lights", []):
-        if light["type"] != "quad":
-            raise SystemExit(f"{scene_path}: light type '{light['type']}' is not exported to peers")
-        quads.append({"corner": _vec(light["corner"]), "edge1": _vec(light["edge1"]),
-                      "edge2": _vec(light["edge2"]), "radiance": _vec(light["radiance"])})
+        kind = light["type"]
+        if kind == "quad":
+            quads.append({"corner": _vec(light["corner"]), "edge1": _vec(light["edge1"]),
+                          "edge2": _vec(light["edge2"]), "radiance": _vec(light["radiance"])})
+        elif punctual_lights and kind in ("point", "spot", "directional"):
+            out = {"type": kind, "name": light.get("name", f"light{len(quads) + len(punctual)}")}
+            if kind in ("point", "spot"):
+                out.update(position=_vec(light["position"]), intensity=_vec(light["intensity"]))
+            if kind in ("spot", "directional"):
+                d = _vec(light["direction"])
+                n = math.sqrt(sum(x * x for x in d))
+                out["direction"] = [x / n for x in d]
+            if kind == "spot":
+                out.update(outer_deg=float(light.get("outer_deg", 45.0)), inner_deg=float(light.get("inner_deg", 0.0)))
+            if kind == "directional":
+                out.update(irradiance=_vec(light["irradiance"]), angle_deg=float(light.get("angle_deg", 0.0)))
+            punctual.append(out)
+        else:
+            raise SystemExit(f"{scene_path}: light type '{kind}' is not exported to this peer")
+    environment = None
+    if "environment" in spec:
+        if not punctual_lights:
+            raise SystemExit(f"{scene_path}: the environment is not exported to this peer")
+        env = spec["environment"]
+        if "file" in env:
+            environment = {"file": os.path.join(folder, env["file"]), "scale": _vec(env.get("scale", 1)),
+                           "rotate_deg": float(env.get("rotate_deg", 0.0))}
+        else:
+            environment = {"radiance": _vec(env["radiance"])}
     if spec.get("headlight"):
         raise SystemExit(f"{scene_path}: headlights are not exported to peers")
 
@@ -253,7 +284,8 @@ def flatten(scene_path, width=None, height=None, drop_duplicate_faces=False):
     camera = {"position": _vec(camera["position"]), "look_at": _vec(camera["look_at"]),
               "up": _vec(camera.get("up", [0, 1, 0])), "fov_y": float(camera.get("fov_y", 45.0))}
     return {"camera": camera, "width": width, "height": height, "materials": materials,
-            "meshes": meshes, "quad_lights": quads, "bounds": bounds, "dropped_duplicate_faces": dropped}
+            "meshes": meshes, "quad_lights": quads, "punctual_lights": punctual, "environment": environment,
+            "bounds": bounds, "dropped_duplicate_faces": dropped}
 
 
 if __name__ == "__main__":
