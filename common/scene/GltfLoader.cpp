@@ -1,5 +1,6 @@
 #include "scene/GltfLoader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -260,8 +261,6 @@ void checkGltfFeatures(const std::string& path, const tinygltf::Model& model) {
                 "computes it)");
         if (m.emissiveTexture.index >= 0)
             ignored.insert("emissiveTexture (emission is its mean colour per material)");
-        if (m.alphaMode == "MASK" || m.alphaMode == "BLEND")
-            ignored.insert("alphaMode " + m.alphaMode + " (rendered opaque)");
         const auto& pbr = m.pbrMetallicRoughness;
         for (const tinygltf::TextureInfo* t :
              {&pbr.baseColorTexture, &pbr.metallicRoughnessTexture, &m.emissiveTexture}) {
@@ -330,6 +329,7 @@ class GltfMaterials {
             const double ior = extensionNumber(gm.extensions, "KHR_materials_ior", "ior", 1.5);
             m.ior = ior >= 1.0 && std::isfinite(ior) ? static_cast<float>(ior) : 1.5f;
         }
+        alphaOf(gm, m);
         // Tangent space, OpenGL's convention (green toward +v up the image), decoded linear.
         if (gm.normalTexture.index >= 0) {
             m.normalTexture = dataTexture(gm.normalTexture.index, "normalTexture");
@@ -339,6 +339,22 @@ class GltfMaterials {
         }
         conserveEnergy(m, path_ + ": material '" + m.name + "'");
         return m;
+    }
+
+    // alphaMode MASK and BLEND: alpha is baseColorFactor's fourth component times the base
+    // colour texture's alpha channel (COLOR_0's alpha is not read). OPAQUE ignores both.
+    void alphaOf(const tinygltf::Material& gm, Material& m) {
+        if (gm.alphaMode != "MASK" && gm.alphaMode != "BLEND") return;
+        m.alphaMode = gm.alphaMode == "MASK" ? AlphaMode::Mask : AlphaMode::Blend;
+        const auto& factor = gm.pbrMetallicRoughness.baseColorFactor;
+        const double a = factor.size() == 4 ? factor[3] : 1.0;
+        m.alpha = std::isfinite(a) ? static_cast<float>(std::clamp(a, 0.0, 1.0)) : 1.0f;
+        m.alphaCutoff = std::isfinite(gm.alphaCutoff)
+                            ? static_cast<float>(std::clamp(gm.alphaCutoff, 0.0, 1.0))
+                            : 0.5f;
+        const int texture = gm.pbrMetallicRoughness.baseColorTexture.index;
+        if (texture >= 0)
+            m.alphaTexture = m.diffuseTexture >= 0 ? m.diffuseTexture : colourTexture(texture);
     }
 
     // emissiveFactor x KHR_materials_emissive_strength; an emissive texture scales it by its

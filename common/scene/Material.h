@@ -20,6 +20,15 @@ enum class Reflection : std::uint8_t {
     Ggx,
 };
 
+/// How a material covers its surface: glTF's alphaMode; MTL's `d` and `map_d` are Blend. A
+/// material that can let a ray through anywhere (client/AlphaCoverage.h, hasCutOuts) is traced
+/// in Embree geometry of its own whose filter functions decide, per hit, whether it counts.
+enum class AlphaMode : std::uint8_t {
+    Opaque,  ///< every hit counts; alpha is ignored
+    Mask,    ///< a hit counts where alpha >= alphaCutoff
+    Blend,   ///< a hit counts with probability alpha, by a hash of the ray (stochastic coverage)
+};
+
 /// Below this alpha = roughness^2 a GGX lobe is rendered as a mirror: D and V lose every bit
 /// of precision in float, and no sampler finds so sharp a peak by evaluation.
 constexpr float kMinGgxAlpha = 1e-3f;
@@ -46,6 +55,12 @@ struct Material {
     /// normal applied to (2 texel - 1) with x and y scaled by `normalScale` (client/NormalMap.h).
     int normalTexture = -1;
     float normalScale = 1.0f;  ///< glTF normalTexture.scale
+    /// Coverage: alpha is `alpha` times the texture's (Texture::alpha) at the hit. Read when
+    /// the scene loads and never changed live (SceneChange keeps them).
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alpha = 1.0f;        ///< glTF baseColorFactor's alpha, MTL d (1 - Tr)
+    float alphaCutoff = 0.5f;  ///< AlphaMode::Mask: glTF alphaCutoff
+    int alphaTexture = -1;     ///< texture whose Texture::alpha multiplies `alpha`, or -1
 
     bool operator==(const Material&) const = default;
 

@@ -43,6 +43,12 @@ void apply(SceneState& s, const SceneChange& change) {
                 // So is the normal map, and its scale with it.
                 value.normalTexture = s.materials[c.material].normalTexture;
                 value.normalScale = s.materials[c.material].normalScale;
+                // Coverage is not changed live: which triangles have filter functions is
+                // fixed when the client builds its Embree geometry.
+                value.alphaMode = s.materials[c.material].alphaMode;
+                value.alpha = s.materials[c.material].alpha;
+                value.alphaCutoff = s.materials[c.material].alphaCutoff;
+                value.alphaTexture = s.materials[c.material].alphaTexture;
                 s.materials[c.material] = value;
             }
         },

@@ -16,9 +16,15 @@ struct Texture {
     std::vector<glm::vec3> texels;  ///< row-major; row 0 is the top of the image (v = 1)
     glm::vec3 average{0.0f};        ///< mean texel, used for the scene's mean albedo
     glm::vec3 minimum{0.0f};        ///< per channel: bounds a roughness map's sharpest lobe
+    /// Coverage in [0, 1], row-major as texels: the image's alpha channel (never sRGB-decoded),
+    /// or for TextureEncoding::Coverage without one its grey; empty when every value is 1.
+    std::vector<float> alpha;
+    float alphaMinimum = 1.0f;  ///< the least value of `alpha` (1 when it is empty)
 
     /// Bilinear lookup with wrapping; (u, v) as in OBJ, v = 0 at the bottom.
     glm::vec3 sample(glm::vec2 uv) const;
+    /// The same for `alpha`: 1 when the texture has none.
+    float sampleAlpha(glm::vec2 uv) const;
 };
 
 }  // namespace igi
