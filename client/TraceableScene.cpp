@@ -99,6 +99,7 @@ TraceableScene::TraceableScene(const SceneGeometry& geometry, const SceneState& 
     : geometry_(geometry), materials_(state.materials), textures_(&geometry.scene().textures) {
     const Scene& scene = geometry.scene();
     quadLightMaterialBase_ = std::uint32_t(materials_.size());
+    cutOutBase_ = std::uint32_t(scene.meshes.size() + state.quadLights.size());
     for (const QuadLight& q : state.quadLights) materials_.push_back(quadLightMaterial(q));
 
     packetWidth_ = defaultPacketWidth(geometry.device().get());
@@ -294,7 +295,20 @@ TraceableScene::WorldTriangle TraceableScene::worldTriangle(std::uint32_t mesh,
 void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, std::uint32_t prim,
                                       float u, float v, float distance, SurfacePoint& hit) const {
     // Flat, the geometry ID is the mesh's; instanced, the instance's ID is.
-    const std::uint32_t meshIndex = layout_ == SceneLayout::Flat ? geom : inst;
+    std::uint32_t meshIndex = layout_ == SceneLayout::Flat ? geom : inst;
+    if (geometry_.anyCutOuts()) {
+        // Cut-out triangles are geometry of their own (SceneGeometry): flat, after the meshes
+        // and quad lights; instanced, kCutOutGeometry in the mesh's scene. Either way the
+        // primitive is an index into that part's triangles.
+        bool cutOut = false;
+        if (layout_ == SceneLayout::Flat && geom >= cutOutBase_) {
+            meshIndex = geometry_.cutOutMeshes()[geom - cutOutBase_];
+            cutOut = true;
+        } else if (layout_ == SceneLayout::Instanced) {
+            cutOut = geom == SceneGeometry::kCutOutGeometry;
+        }
+        if (geometry_.hasCutOuts(meshIndex)) prim = geometry_.meshTriangle(meshIndex, cutOut, prim);
+    }
     const MeshData& m = meshes_[meshIndex];
     const Mesh& mesh = *m.mesh;
     const glm::uvec3 t = mesh.triangles[prim];
