@@ -17,7 +17,7 @@ bool hasCutOuts(const Material& m, const std::vector<Texture>& textures) {
 float alphaAt(const Material& m, const std::vector<Texture>& textures, glm::vec2 uv) {
     float a = m.alpha;
     if (m.alphaTexture >= 0 && m.alphaTexture < static_cast<int>(textures.size()))
-        a *= textures[m.alphaTexture].sampleAlpha(uv);
+        a *= textures[m.alphaTexture].sampleAlpha(m.alphaUv(uv));
     return a;
 }
 

@@ -341,12 +341,14 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
     hit.material = &materials_[materialOf(m, prim)];
     hit.albedo = hit.material->diffuse;
     if (hit.material->diffuseTexture >= 0)
-        hit.albedo *= (*textures_)[hit.material->diffuseTexture].sample(hit.uv);
+        hit.albedo *=
+            (*textures_)[hit.material->diffuseTexture].sample(hit.material->diffuseUv(hit.uv));
     if (hit.material->reflection == Reflection::Ggx) {
         hit.roughness = hit.material->roughness;
         hit.metallic = hit.material->metallic;
         if (hit.material->metallicRoughnessTexture >= 0) {
-            const glm::vec3 t = (*textures_)[hit.material->metallicRoughnessTexture].sample(hit.uv);
+            const glm::vec3 t = (*textures_)[hit.material->metallicRoughnessTexture].sample(
+                hit.material->metallicRoughnessUv(hit.uv));
             hit.roughness *= t.y;
             hit.metallic *= t.z;
         }
@@ -371,6 +373,10 @@ void TraceableScene::applyNormalMap(const MeshData& m, glm::uvec3 t, float u, fl
             float sign = ti.w < 0 ? -1.0f : 1.0f;
             if (glm::determinant(toWorld) < 0) sign = -sign;
             framed = normalmap::frameFromTangent(n, toWorld * glm::vec3(ti), sign, frame);
+            // A transformed map's +u and +v run elsewhere on the surface: d p / d uv' is the
+            // frame times the inverse of the transform's linear part.
+            const UvTransform& uvt = hit.material->normalUv;
+            if (framed && uvt.active) framed = normalmap::transformFrame(uvt.linear, frame);
         }
     }
     // Else the triangle's uv derivatives: not MikkTSpace (NormalMap.h, frameFromUvs).
@@ -378,12 +384,13 @@ void TraceableScene::applyNormalMap(const MeshData& m, glm::uvec3 t, float u, fl
         const glm::vec3 p[3] = {transformPoint(m.objectToWorld, mesh.positions[t.x]),
                                 transformPoint(m.objectToWorld, mesh.positions[t.y]),
                                 transformPoint(m.objectToWorld, mesh.positions[t.z])};
-        const glm::vec2 uv[3] = {mesh.uvs[t.x], mesh.uvs[t.y], mesh.uvs[t.z]};
+        const UvTransform& uvt = hit.material->normalUv;
+        const glm::vec2 uv[3] = {uvt(mesh.uvs[t.x]), uvt(mesh.uvs[t.y]), uvt(mesh.uvs[t.z])};
         framed = normalmap::frameFromUvs(n, p, uv, frame);
     }
     if (!framed) return;  // degenerate: the interpolated normal
     const Material& mat = *hit.material;
-    const glm::vec3 texel = (*textures_)[mat.normalTexture].sample(hit.uv);
+    const glm::vec3 texel = (*textures_)[mat.normalTexture].sample(mat.normalUv(hit.uv));
     glm::vec3 mapped =
         normalmap::perturb(n, frame, normalmap::tangentSpaceNormal(texel, mat.normalScale));
     const glm::vec3 ng = hit.geometricNormal;

@@ -15,9 +15,10 @@ static_assert(sizeof(PointLight) == sizeof(std::string) + 32,
               "PointLight changed: update ChangeCodec.cpp");
 static_assert(sizeof(QuadLight) == sizeof(std::string) + 56,
               "QuadLight changed: update ChangeCodec.cpp");
-// Not carried: textures, the normal map's scale and coverage (alphaMode, alpha, alphaCutoff,
-// alphaTexture): applyChanges keeps the receiver's (docs/PROTOCOL.md).
-static_assert(sizeof(Material) == sizeof(std::string) + 104,
+// Not carried: textures, the normal map's scale, coverage (alphaMode, alpha, alphaCutoff,
+// alphaTexture) and the textures' uv transforms: applyChanges keeps the receiver's
+// (docs/PROTOCOL.md).
+static_assert(sizeof(Material) == sizeof(std::string) + 216,
               "Material changed: update ChangeCodec.cpp");
 static_assert(std::variant_size_v<SceneChange> == 5,
               "a new kind of SceneChange needs a tag in ChangeCodec.cpp");

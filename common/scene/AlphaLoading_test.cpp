@@ -13,7 +13,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "scene/SceneChange.h"
 #include "scene/SceneLoader.h"
+#include "scene/SceneState.h"
 #include "scene/TestScenes.h"
 #include "scene/TextureLoader.h"
 #include "util/ExpectContains.h"
@@ -169,6 +171,29 @@ TEST(AlphaOverrides, SceneFileSetsModeFactorAndCutoff) {
              {"m.mtl", "newmtl a\n"}});
     });
     EXPECT_CONTAINS(what, "alpha_mode");
+}
+
+// A live material change carries no coverage (and no uv transform): the receiver keeps its own.
+TEST(AlphaLive, MaterialChangesKeepCoverageAndUvTransforms) {
+    SceneState state;
+    Material m;
+    m.alphaMode = AlphaMode::Mask;
+    m.alpha = 0.7f;
+    m.alphaCutoff = 0.3f;
+    m.alphaTexture = 2;
+    m.diffuseUv.active = true;
+    m.diffuseUv.offset = {0.5f, 0.0f};
+    state.materials = {m};
+    Material changed;  // as decoded from the wire: defaults but for what the change carries
+    changed.diffuse = glm::vec3(0.2f);
+    applyChanges(state, {MaterialChange{0, changed}});
+    const Material& after = state.materials[0];
+    EXPECT_EQ(after.diffuse, glm::vec3(0.2f));
+    EXPECT_EQ(after.alphaMode, AlphaMode::Mask);
+    EXPECT_FLOAT_EQ(after.alpha, 0.7f);
+    EXPECT_FLOAT_EQ(after.alphaCutoff, 0.3f);
+    EXPECT_EQ(after.alphaTexture, 2);
+    EXPECT_EQ(after.diffuseUv, m.diffuseUv);
 }
 
 // ---- glTF

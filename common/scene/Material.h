@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <string>
 
+#include <glm/mat2x2.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace igi {
@@ -27,6 +29,18 @@ enum class AlphaMode : std::uint8_t {
     Opaque,  ///< every hit counts; alpha is ignored
     Mask,    ///< a hit counts where alpha >= alphaCutoff
     Blend,   ///< a hit counts with probability alpha, by a hash of the ray (stochastic coverage)
+};
+
+/// A texture slot's uv transform (glTF KHR_texture_transform), in igi's uvs (v up the image):
+/// uv' = linear * uv + offset where `active`, uv itself otherwise (so that a material without
+/// one computes exactly what it did before).
+struct UvTransform {
+    glm::mat2 linear{1.0f};
+    glm::vec2 offset{0.0f};
+    bool active = false;
+
+    glm::vec2 operator()(glm::vec2 uv) const { return active ? linear * uv + offset : uv; }
+    bool operator==(const UvTransform&) const = default;
 };
 
 /// Below this alpha = roughness^2 a GGX lobe is rendered as a mirror: D and V lose every bit
@@ -61,6 +75,9 @@ struct Material {
     float alpha = 1.0f;        ///< glTF baseColorFactor's alpha, MTL d (1 - Tr)
     float alphaCutoff = 0.5f;  ///< AlphaMode::Mask: glTF alphaCutoff
     int alphaTexture = -1;     ///< texture whose Texture::alpha multiplies `alpha`, or -1
+    /// Where each texture is looked up (glTF KHR_texture_transform of its slot; the alpha
+    /// texture is glTF's base colour texture, with its transform). Not changed live.
+    UvTransform diffuseUv, metallicRoughnessUv, normalUv, alphaUv;
 
     bool operator==(const Material&) const = default;
 

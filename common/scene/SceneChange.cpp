@@ -49,6 +49,11 @@ void apply(SceneState& s, const SceneChange& change) {
                 value.alpha = s.materials[c.material].alpha;
                 value.alphaCutoff = s.materials[c.material].alphaCutoff;
                 value.alphaTexture = s.materials[c.material].alphaTexture;
+                // Nor are the textures' uv transforms.
+                value.diffuseUv = s.materials[c.material].diffuseUv;
+                value.metallicRoughnessUv = s.materials[c.material].metallicRoughnessUv;
+                value.normalUv = s.materials[c.material].normalUv;
+                value.alphaUv = s.materials[c.material].alphaUv;
                 s.materials[c.material] = value;
             }
         },
