@@ -40,9 +40,10 @@ RTCScene MovedInstances::build(const SceneGeometry& geometry, const SceneState& 
     std::uint32_t id = 0;
     for (std::uint32_t i : meshes_) {
         const glm::mat4 m = state.transforms[i].matrix();
-        if (flat)
-            geometry.attachWorldMesh(top, geometry.scene().meshes[i], m, id++);
-        else
+        if (flat) {
+            const std::uint32_t opaqueId = id++;
+            geometry.attachWorldMesh(top, i, m, opaqueId, geometry.hasCutOuts(i) ? id++ : 0);
+        } else
             geometry.attachInstance(top, geometry.mesh(i), m, id++);
     }
     for (std::uint32_t i : lights_) {

@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/mat2x2.hpp>
+#include <glm/matrix.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -60,6 +62,27 @@ inline bool frameFromUvs(glm::vec3 n, const glm::vec3 p[3], const glm::vec2 uv[3
     const glm::vec3 b = glm::cross(n, frame.tangent);
     frame.bitangent = glm::dot(b, dpdv) < 0 ? -b : b;
     return detail::finite(frame.bitangent);
+}
+
+/// The frame of a map looked up at uv' = linear * uv + offset (KHR_texture_transform), from
+/// `frame`, the one of uv: tangent and bitangent along d p / d u' and d p / d v', each the frame
+/// times a column of the inverse of `linear`, made unit (the bitangent kept orthogonal to the
+/// tangent, on its side). False when `linear` is singular.
+inline bool transformFrame(const glm::mat2& linear, TangentFrame& frame) {
+    const float det = linear[0][0] * linear[1][1] - linear[1][0] * linear[0][1];
+    if (!(std::abs(det) > 0) || !std::isfinite(det)) return false;
+    const glm::mat2 inverse = glm::inverse(linear);
+    const glm::vec3 t = inverse[0].x * frame.tangent + inverse[0].y * frame.bitangent;
+    const glm::vec3 b = inverse[1].x * frame.tangent + inverse[1].y * frame.bitangent;
+    const float tLen = glm::length(t);
+    if (!(tLen > 0) || !std::isfinite(tLen)) return false;
+    const glm::vec3 tangent = t / tLen;
+    const glm::vec3 bOrtho = b - tangent * glm::dot(tangent, b);
+    const float bLen = glm::length(bOrtho);
+    if (!(bLen > 0) || !std::isfinite(bLen)) return false;
+    frame.tangent = tangent;
+    frame.bitangent = bOrtho / bLen;
+    return true;
 }
 
 /// The tangent-space normal of a texel of a linear normal map: 2 texel - 1, its x and y

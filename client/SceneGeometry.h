@@ -8,6 +8,7 @@
 #include <embree3/rtcore.h>
 #include <glm/mat4x4.hpp>
 
+#include "AlphaCoverage.h"
 #include "EmbreeDevice.h"
 #include "EnvironmentMap.h"
 #include "scene/Scene.h"
@@ -45,8 +46,29 @@ class SceneGeometry {
     const Scene& scene() const { return scene_; }
     /// The sky, with its sampling distribution (built once: a map's can take a while).
     const EnvironmentMap& environment() const { return environment_; }
-    /// The Embree scene of mesh i, or null for a mesh without triangles.
+    /// The Embree scene of mesh i, or null for a mesh without triangles. A mesh with cut-out
+    /// triangles (materials with hasCutOuts) holds its opaque ones under geometry ID
+    /// kOpaqueGeometry and the cut-out ones, with the filter functions, under kCutOutGeometry;
+    /// any other mesh is one geometry of ID 0 as before.
     RTCScene mesh(std::size_t i) const { return meshes_[i]; }
+    static constexpr std::uint32_t kOpaqueGeometry = 0;
+    static constexpr std::uint32_t kCutOutGeometry = 1;
+
+    /// Whether any mesh has cut-out triangles (else every geometry ID is a mesh's, or a quad
+    /// light's, and every primitive ID its triangle).
+    bool anyCutOuts() const { return !cutOutMeshes_.empty(); }
+    /// The meshes with cut-out triangles, ascending. In a flat scene of `quadLights` quad
+    /// lights, the cut-out triangles of cutOutMeshes()[r] are geometry ID meshes + quadLights + r.
+    const std::vector<std::uint32_t>& cutOutMeshes() const { return cutOutMeshes_; }
+    bool hasCutOuts(std::size_t mesh) const {
+        return mesh < parts_.size() && parts_[mesh].cutOut != nullptr;
+    }
+    /// Mesh `mesh`'s triangle that is primitive `prim` of its opaque or its cut-out geometry.
+    std::uint32_t meshTriangle(std::size_t mesh, bool cutOut, std::uint32_t prim) const {
+        const Parts& p = parts_[mesh];
+        if (!p.cutOut) return prim;
+        return cutOut ? p.cutOut->triangles[prim] : p.opaque[prim];
+    }
     /// The unit square (0,0,0), (1,0,0), (1,1,0), (0,1,0) as two counter-clockwise triangles.
     const Mesh& unitQuad() const { return unitQuad_; }
     RTCScene unitQuadScene() const { return unitQuadScene_; }
@@ -65,6 +87,10 @@ class SceneGeometry {
     /// objects in the same way as the version it stands for, so both find the same hits.
     void attachWorldMesh(RTCScene scene, const Mesh& mesh, const glm::mat4& objectToWorld,
                          std::uint32_t id) const;
+    /// The same for the scene's mesh i: its opaque triangles under `id`, its cut-out ones (if
+    /// any) under `cutOutId`.
+    void attachWorldMesh(RTCScene scene, std::size_t mesh, const glm::mat4& objectToWorld,
+                         std::uint32_t id, std::uint32_t cutOutId) const;
     void attachInstance(RTCScene scene, RTCScene object, const glm::mat4& objectToWorld,
                         std::uint32_t id) const;
 
@@ -75,8 +101,14 @@ class SceneGeometry {
         bool operator==(const Placement&) const = default;
     };
     struct FlatScene;
+    /// A mesh split by coverage; both empty when no triangle is cut out.
+    struct Parts {
+        std::vector<std::uint32_t> opaque;  ///< opaque primitive -> the mesh's triangle
+        std::unique_ptr<CutOutTriangles> cutOut;
+    };
 
-    RTCScene build(const Mesh& mesh) const;
+    RTCScene build(const Mesh& mesh, const Parts* parts) const;
+    void splitByCoverage();
     static Placement placementOf(const SceneState& state);
     RTCScene buildFlat(const Placement& placement, RTCBuildQuality quality) const;
 
@@ -84,6 +116,8 @@ class SceneGeometry {
     const Scene& scene_;
     EnvironmentMap environment_;
     std::vector<RTCScene> meshes_;
+    std::vector<Parts> parts_;  ///< per mesh
+    std::vector<std::uint32_t> cutOutMeshes_;
     Mesh unitQuad_;
     RTCScene unitQuadScene_ = nullptr;
     std::uint64_t triangleCount_ = 0;

@@ -100,6 +100,7 @@ TraceableScene::TraceableScene(const SceneGeometry& geometry, const SceneState& 
     : geometry_(geometry), materials_(state.materials), textures_(&geometry.scene().textures) {
     const Scene& scene = geometry.scene();
     quadLightMaterialBase_ = std::uint32_t(materials_.size());
+    cutOutBase_ = std::uint32_t(scene.meshes.size() + state.quadLights.size());
     for (const QuadLight& q : state.quadLights) materials_.push_back(quadLightMaterial(q));
 
     packetWidth_ = defaultPacketWidth(geometry.device().get());
@@ -296,7 +297,20 @@ TraceableScene::WorldTriangle TraceableScene::worldTriangle(std::uint32_t mesh,
 void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, std::uint32_t prim,
                                       float u, float v, float distance, SurfacePoint& hit) const {
     // Flat, the geometry ID is the mesh's; instanced, the instance's ID is.
-    const std::uint32_t meshIndex = layout_ == SceneLayout::Flat ? geom : inst;
+    std::uint32_t meshIndex = layout_ == SceneLayout::Flat ? geom : inst;
+    if (geometry_.anyCutOuts()) {
+        // Cut-out triangles are geometry of their own (SceneGeometry): flat, after the meshes
+        // and quad lights; instanced, kCutOutGeometry in the mesh's scene. Either way the
+        // primitive is an index into that part's triangles.
+        bool cutOut = false;
+        if (layout_ == SceneLayout::Flat && geom >= cutOutBase_) {
+            meshIndex = geometry_.cutOutMeshes()[geom - cutOutBase_];
+            cutOut = true;
+        } else if (layout_ == SceneLayout::Instanced) {
+            cutOut = geom == SceneGeometry::kCutOutGeometry;
+        }
+        if (geometry_.hasCutOuts(meshIndex)) prim = geometry_.meshTriangle(meshIndex, cutOut, prim);
+    }
     const MeshData& m = meshes_[meshIndex];
     const Mesh& mesh = *m.mesh;
     const glm::uvec3 t = mesh.triangles[prim];
@@ -329,12 +343,14 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
     hit.material = &materials_[materialOf(m, prim)];
     hit.albedo = hit.material->diffuse;
     if (hit.material->diffuseTexture >= 0)
-        hit.albedo *= (*textures_)[hit.material->diffuseTexture].sample(hit.uv);
+        hit.albedo *=
+            (*textures_)[hit.material->diffuseTexture].sample(hit.material->diffuseUv(hit.uv));
     if (hit.material->reflection == Reflection::Ggx) {
         hit.roughness = hit.material->roughness;
         hit.metallic = hit.material->metallic;
         if (hit.material->metallicRoughnessTexture >= 0) {
-            const glm::vec3 t = (*textures_)[hit.material->metallicRoughnessTexture].sample(hit.uv);
+            const glm::vec3 t = (*textures_)[hit.material->metallicRoughnessTexture].sample(
+                hit.material->metallicRoughnessUv(hit.uv));
             hit.roughness *= t.y;
             hit.metallic *= t.z;
         }
@@ -359,6 +375,10 @@ void TraceableScene::applyNormalMap(const MeshData& m, glm::uvec3 t, float u, fl
             float sign = ti.w < 0 ? -1.0f : 1.0f;
             if (glm::determinant(toWorld) < 0) sign = -sign;
             framed = normalmap::frameFromTangent(n, toWorld * glm::vec3(ti), sign, frame);
+            // A transformed map's +u and +v run elsewhere on the surface: d p / d uv' is the
+            // frame times the inverse of the transform's linear part.
+            const UvTransform& uvt = hit.material->normalUv;
+            if (framed && uvt.active) framed = normalmap::transformFrame(uvt.linear, frame);
         }
     }
     // Else the triangle's uv derivatives: not MikkTSpace (NormalMap.h, frameFromUvs).
@@ -366,12 +386,13 @@ void TraceableScene::applyNormalMap(const MeshData& m, glm::uvec3 t, float u, fl
         const glm::vec3 p[3] = {transformPoint(m.objectToWorld, mesh.positions[t.x]),
                                 transformPoint(m.objectToWorld, mesh.positions[t.y]),
                                 transformPoint(m.objectToWorld, mesh.positions[t.z])};
-        const glm::vec2 uv[3] = {mesh.uvs[t.x], mesh.uvs[t.y], mesh.uvs[t.z]};
+        const UvTransform& uvt = hit.material->normalUv;
+        const glm::vec2 uv[3] = {uvt(mesh.uvs[t.x]), uvt(mesh.uvs[t.y]), uvt(mesh.uvs[t.z])};
         framed = normalmap::frameFromUvs(n, p, uv, frame);
     }
     if (!framed) return;  // degenerate: the interpolated normal
     const Material& mat = *hit.material;
-    const glm::vec3 texel = (*textures_)[mat.normalTexture].sample(hit.uv);
+    const glm::vec3 texel = (*textures_)[mat.normalTexture].sample(mat.normalUv(hit.uv));
     glm::vec3 mapped =
         normalmap::perturb(n, frame, normalmap::tangentSpaceNormal(texel, mat.normalScale));
     const glm::vec3 ng = hit.geometricNormal;

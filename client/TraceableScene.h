@@ -167,6 +167,7 @@ class TraceableScene {
     std::vector<Material> materials_;
     const std::vector<Texture>* textures_ = nullptr;
     std::uint32_t quadLightMaterialBase_ = 0;
+    std::uint32_t cutOutBase_ = 0;  ///< flat: the first geometry ID of cut-out triangles
     std::vector<MeshData> meshes_;
     SceneLayout layout_ = SceneLayout::Flat;
     RTCScene top_ = nullptr;

@@ -208,6 +208,30 @@ TEST(EndToEnd, ThreeClientsRenderMetallicRoughnessSpheresExactlyAsOneDoes) {
     fs::remove_all(dir);
 }
 
+// Alpha cut-outs (MASK at three cut-offs) and BLEND's stochastic coverage are decided by Embree
+// filter functions from the ray alone: Khronos' AlphaBlendModeTest renders the same whichever
+// client rendered which tile, in packets or single rays.
+TEST(EndToEnd, ThreeClientsRenderAlphaBlendModeTestExactlyAsOneDoes) {
+    const fs::path gltf =
+        sourceDir() / "../shared/scenes/gltf/AlphaBlendModeTest/glTF/AlphaBlendModeTest.gltf";
+    if (!fs::exists(gltf)) GTEST_SKIP() << gltf << " is not here";
+    const fs::path dir = scratchDir("alpha");
+    const std::vector<std::string> common = {"--scene",  gltf.string(), "--width",  "96",
+                                             "--height", "72",          "--frames", "3",
+                                             "--listen", "127.0.0.1:0"};
+    auto args3 = common, args1 = common;
+    args3.insert(args3.end(), {"--local-clients", "3", "--output", (dir / "three.exr").string()});
+    args1.insert(args1.end(), {"--local-clients", "1", "--output", (dir / "one.exr").string()});
+    const ProcessResult three = runMaster(dir, "three", args3), one = runMaster(dir, "one", args1);
+    ASSERT_EQ(three.exitCode, 0) << three.output;
+    ASSERT_EQ(one.exitCode, 0) << one.output;
+    const Image a = readImage(dir / "three.exr"), b = readImage(dir / "one.exr");
+    expectFinite(a, "three.exr");
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        ASSERT_EQ(a.pixels[i], b.pixels[i]) << "pixel " << i % 96 << "," << i / 96 << " differs";
+    fs::remove_all(dir);
+}
+
 TEST(EndToEnd, ABadSceneFileIsAClearErrorAndANonZeroExit) {
     const fs::path dir = scratchDir("bad");
     std::ofstream(dir / "bad.json")

@@ -1,5 +1,6 @@
 #include "scene/GltfLoader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -207,6 +208,49 @@ double extensionNumber(const tinygltf::ExtensionMap& extensions, const char* ext
     return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
 }
 
+// The texCoord a textureInfo's lookup uses: KHR_texture_transform's, when it says one.
+template <typename Info>
+int texCoordOf(const Info& info) {
+    auto it = info.extensions.find("KHR_texture_transform");
+    if (it != info.extensions.end() && it->second.Has("texCoord")) {
+        const tinygltf::Value& v = it->second.Get("texCoord");
+        if (v.IsNumber()) return static_cast<int>(v.GetNumberAsDouble());
+    }
+    return info.texCoord;
+}
+
+// A textureInfo's KHR_texture_transform (offset, rotation, scale; its texCoord is texCoordOf's)
+// in igi's uvs. glTF's: g' = offset + R(rotation) S(scale) g, R's rows (cos, sin), (-sin, cos),
+// with g = (u, 1 - v) of igi's (u, v) (glTF's v runs down the image). Inactive without the
+// extension, or when it is the identity.
+UvTransform uvTransformOf(const tinygltf::ExtensionMap& extensions) {
+    UvTransform t;
+    auto it = extensions.find("KHR_texture_transform");
+    if (it == extensions.end() || !it->second.IsObject()) return t;
+    const tinygltf::Value& ext = it->second;
+    auto number = [](const tinygltf::Value& v, double fallback) {
+        const double x = v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+        return std::isfinite(x) ? x : fallback;
+    };
+    auto pair = [&](const char* key, glm::dvec2 fallback) {
+        if (!ext.Has(key)) return fallback;
+        const tinygltf::Value& a = ext.Get(key);
+        if (!a.IsArray() || a.ArrayLen() != 2) return fallback;
+        return glm::dvec2(number(a.Get(0), fallback.x), number(a.Get(1), fallback.y));
+    };
+    const glm::dvec2 offset = pair("offset", {0.0, 0.0});
+    const glm::dvec2 scale = pair("scale", {1.0, 1.0});
+    const double rotation = ext.Has("rotation") ? number(ext.Get("rotation"), 0.0) : 0.0;
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    const glm::dmat2 m = glm::dmat2(c, -s, s, c) * glm::dmat2(scale.x, 0.0, 0.0, scale.y);
+    // igi's (u', v') = D g' + (0, 1) and g = D (u, v) + (0, 1), D = diag(1, -1).
+    const glm::dmat2 d(1.0, 0.0, 0.0, -1.0);
+    t.linear = glm::mat2(d * m * d);
+    t.offset = glm::vec2(d * (m * glm::dvec2(0.0, 1.0) + offset) + glm::dvec2(0.0, 1.0));
+    t.active = !(t.linear == glm::mat2(1.0f) && t.offset == glm::vec2(0.0f));
+    return t;
+}
+
 glm::vec3 vec3Of(const std::vector<double>& v, glm::vec3 fallback) {
     if (v.size() < 3) return fallback;
     return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
@@ -228,8 +272,9 @@ std::string extensionForMime(const std::string& mime) {
 // ones it cannot read by name.
 bool modelledExtension(const std::string& name) {
     static const std::set<std::string> kModelled = {
-        "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_transmission",
-        "KHR_lights_punctual", "KHR_mesh_quantization"};
+        "KHR_materials_emissive_strength", "KHR_materials_ior",
+        "KHR_materials_transmission",      "KHR_lights_punctual",
+        "KHR_mesh_quantization",           "KHR_texture_transform"};
     return kModelled.count(name) > 0;
 }
 
@@ -262,19 +307,14 @@ void checkGltfFeatures(const std::string& path, const tinygltf::Model& model) {
                 "computes it)");
         if (m.emissiveTexture.index >= 0)
             ignored.insert("emissiveTexture (emission is its mean colour per material)");
-        if (m.alphaMode == "MASK" || m.alphaMode == "BLEND")
-            ignored.insert("alphaMode " + m.alphaMode + " (rendered opaque)");
         const auto& pbr = m.pbrMetallicRoughness;
+        // KHR_texture_transform is read for every slot (the emissive texture's mean is over
+        // the whole image); a texCoord other than 0, the extension's or the slot's, is not.
         for (const tinygltf::TextureInfo* t :
-             {&pbr.baseColorTexture, &pbr.metallicRoughnessTexture, &m.emissiveTexture}) {
-            if (t->index >= 0 && t->texCoord != 0) ignored.insert("texCoord other than 0");
-            if (t->index >= 0 && t->extensions.count("KHR_texture_transform"))
-                ignored.insert("KHR_texture_transform");
-        }
-        if (m.normalTexture.index >= 0 && m.normalTexture.texCoord != 0)
+             {&pbr.baseColorTexture, &pbr.metallicRoughnessTexture, &m.emissiveTexture})
+            if (t->index >= 0 && texCoordOf(*t) != 0) ignored.insert("texCoord other than 0");
+        if (m.normalTexture.index >= 0 && texCoordOf(m.normalTexture) != 0)
             ignored.insert("texCoord other than 0");
-        if (m.normalTexture.index >= 0 && m.normalTexture.extensions.count("KHR_texture_transform"))
-            ignored.insert("KHR_texture_transform");
     }
     for (const tinygltf::Mesh& mesh : model.meshes)
         for (const tinygltf::Primitive& p : mesh.primitives)
@@ -322,25 +362,49 @@ class GltfMaterials {
             // pbrMetallicRoughness both factors default to 1: a rough white metal.
             m.reflection = Reflection::Ggx;
             m.diffuse = baseColor;
-            if (pbr.baseColorTexture.index >= 0)
+            if (pbr.baseColorTexture.index >= 0) {
                 m.diffuseTexture = colourTexture(pbr.baseColorTexture.index);
+                m.diffuseUv = uvTransformOf(pbr.baseColorTexture.extensions);
+            }
             m.roughness = static_cast<float>(std::clamp(pbr.roughnessFactor, 0.0, 1.0));
             m.metallic = static_cast<float>(std::clamp(pbr.metallicFactor, 0.0, 1.0));
-            if (pbr.metallicRoughnessTexture.index >= 0)
+            if (pbr.metallicRoughnessTexture.index >= 0) {
                 m.metallicRoughnessTexture =
                     dataTexture(pbr.metallicRoughnessTexture.index, "metallicRoughnessTexture");
+                m.metallicRoughnessUv = uvTransformOf(pbr.metallicRoughnessTexture.extensions);
+            }
             const double ior = extensionNumber(gm.extensions, "KHR_materials_ior", "ior", 1.5);
             m.ior = ior >= 1.0 && std::isfinite(ior) ? static_cast<float>(ior) : 1.5f;
         }
+        alphaOf(gm, m);
         // Tangent space, OpenGL's convention (green toward +v up the image), decoded linear.
         if (gm.normalTexture.index >= 0) {
             m.normalTexture = dataTexture(gm.normalTexture.index, "normalTexture");
+            m.normalUv = uvTransformOf(gm.normalTexture.extensions);
             m.normalScale = std::isfinite(gm.normalTexture.scale)
                                 ? static_cast<float>(gm.normalTexture.scale)
                                 : 1.0f;
         }
         conserveEnergy(m, path_ + ": material '" + m.name + "'");
         return m;
+    }
+
+    // alphaMode MASK and BLEND: alpha is baseColorFactor's fourth component times the base
+    // colour texture's alpha channel (COLOR_0's alpha is not read). OPAQUE ignores both.
+    void alphaOf(const tinygltf::Material& gm, Material& m) {
+        if (gm.alphaMode != "MASK" && gm.alphaMode != "BLEND") return;
+        m.alphaMode = gm.alphaMode == "MASK" ? AlphaMode::Mask : AlphaMode::Blend;
+        const auto& factor = gm.pbrMetallicRoughness.baseColorFactor;
+        const double a = factor.size() == 4 ? factor[3] : 1.0;
+        m.alpha = std::isfinite(a) ? static_cast<float>(std::clamp(a, 0.0, 1.0)) : 1.0f;
+        m.alphaCutoff = std::isfinite(gm.alphaCutoff)
+                            ? static_cast<float>(std::clamp(gm.alphaCutoff, 0.0, 1.0))
+                            : 0.5f;
+        const int texture = gm.pbrMetallicRoughness.baseColorTexture.index;
+        if (texture >= 0) {
+            m.alphaTexture = m.diffuseTexture >= 0 ? m.diffuseTexture : colourTexture(texture);
+            m.alphaUv = uvTransformOf(gm.pbrMetallicRoughness.baseColorTexture.extensions);
+        }
     }
 
     // emissiveFactor x KHR_materials_emissive_strength; an emissive texture scales it by its

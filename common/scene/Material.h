@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <string>
 
+#include <glm/mat2x2.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace igi {
@@ -18,6 +20,27 @@ enum class Reflection : std::uint8_t {
     /// base colour is `diffuse` times its texture; roughness and metallic are the factors times
     /// the green and blue of `metallicRoughnessTexture`.
     Ggx,
+};
+
+/// How a material covers its surface: glTF's alphaMode; MTL's `d` and `map_d` are Blend. A
+/// material that can let a ray through anywhere (client/AlphaCoverage.h, hasCutOuts) is traced
+/// in Embree geometry of its own whose filter functions decide, per hit, whether it counts.
+enum class AlphaMode : std::uint8_t {
+    Opaque,  ///< every hit counts; alpha is ignored
+    Mask,    ///< a hit counts where alpha >= alphaCutoff
+    Blend,   ///< a hit counts with probability alpha, by a hash of the ray (stochastic coverage)
+};
+
+/// A texture slot's uv transform (glTF KHR_texture_transform), in igi's uvs (v up the image):
+/// uv' = linear * uv + offset where `active`, uv itself otherwise (so that a material without
+/// one computes exactly what it did before).
+struct UvTransform {
+    glm::mat2 linear{1.0f};
+    glm::vec2 offset{0.0f};
+    bool active = false;
+
+    glm::vec2 operator()(glm::vec2 uv) const { return active ? linear * uv + offset : uv; }
+    bool operator==(const UvTransform&) const = default;
 };
 
 /// Below this alpha = roughness^2 a GGX lobe is rendered as a mirror: D and V lose every bit
@@ -46,6 +69,15 @@ struct Material {
     /// normal applied to (2 texel - 1) with x and y scaled by `normalScale` (client/NormalMap.h).
     int normalTexture = -1;
     float normalScale = 1.0f;  ///< glTF normalTexture.scale
+    /// Coverage: alpha is `alpha` times the texture's (Texture::alpha) at the hit. Read when
+    /// the scene loads and never changed live (SceneChange keeps them).
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alpha = 1.0f;        ///< glTF baseColorFactor's alpha, MTL d (1 - Tr)
+    float alphaCutoff = 0.5f;  ///< AlphaMode::Mask: glTF alphaCutoff
+    int alphaTexture = -1;     ///< texture whose Texture::alpha multiplies `alpha`, or -1
+    /// Where each texture is looked up (glTF KHR_texture_transform of its slot; the alpha
+    /// texture is glTF's base colour texture, with its transform). Not changed live.
+    UvTransform diffuseUv, metallicRoughnessUv, normalUv, alphaUv;
 
     bool operator==(const Material&) const = default;
 

@@ -33,6 +33,15 @@ void apply(const JsonNode& node, const std::optional<int>& texture, Material& m)
     if (auto v = node.find("roughness")) m.roughness = v->real(NumberRange::closed(0, 1));
     if (auto v = node.find("metallic")) m.metallic = v->real(NumberRange::closed(0, 1));
     if (texture) m.diffuseTexture = *texture;
+    // Coverage (docs/MATERIALS.md, "Alpha"): read when the scene loads, never changed live.
+    if (auto v = node.find("alpha_mode")) {
+        const std::string mode = v->choice({"opaque", "mask", "blend"});
+        m.alphaMode = mode == "mask"    ? AlphaMode::Mask
+                      : mode == "blend" ? AlphaMode::Blend
+                                        : AlphaMode::Opaque;
+    }
+    if (auto v = node.find("alpha")) m.alpha = v->real(NumberRange::closed(0, 1));
+    if (auto v = node.find("alpha_cutoff")) m.alphaCutoff = v->real(NumberRange::closed(0, 1));
 }
 
 std::optional<int> overrideTexture(const JsonNode& node, SceneAssets& assets) {
@@ -60,7 +69,8 @@ void applyMaterialOverrides(const JsonNode& node, SceneAssets& assets) {
     for (std::size_t i = 0; i < materials.size(); ++i) byName.emplace(materials[i].name, i);
     for (const auto& [name, value] : node.members()) {
         value.checkKeys({"type", "diffuse", "specular", "phong_exponent", "ior", "transmittance",
-                         "emission", "roughness", "metallic", "texture"});
+                         "emission", "roughness", "metallic", "texture", "alpha_mode", "alpha",
+                         "alpha_cutoff"});
         const auto [first, last] = byName.equal_range(name);
         if (first == last) value.fail("no loaded mesh has a material named '" + name + "'");
         const std::optional<int> texture = overrideTexture(value, assets);

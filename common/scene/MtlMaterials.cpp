@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -184,35 +185,50 @@ Material materialFromMtl(const tinyobj::material_t& mtl, const std::string& mtlP
     applyIllum(mtl, where, m);
     conserveEnergy(m, where);
 
-    if (!mtl.diffuse_texname.empty()) {
-        const std::string name = slashes(mtl.diffuse_texname);
+    // A texture statement's file, decoded once per encoding; errors name the statement's line.
+    auto texture = [&](const std::string& texname, const std::string& statement,
+                       TextureEncoding encoding) {
+        const std::string name = slashes(texname);
         const std::string path = resolveRelative(mtlPath, name);
         try {
             assets.files().checkPath(path);
         } catch (const SceneError& e) {
-            throw SceneError::atLine(mtlPath, mtlLine(mtlText, mtl.name, "map_Kd"), e.message());
+            throw SceneError::atLine(mtlPath, mtlLine(mtlText, mtl.name, statement), e.message());
         }
-        std::optional<int> texture;
+        std::optional<int> index;
         try {
-            texture = assets.textureFile(path);
+            index = assets.textureFile(path, encoding);
         } catch (const SceneError& e) {
             // A texture that exists but does not decode: say which statement wanted it.
-            throw SceneError::atLine(mtlPath, mtlLine(mtlText, mtl.name, "map_Kd"), e.what());
+            throw SceneError::atLine(mtlPath, mtlLine(mtlText, mtl.name, statement), e.what());
         }
-        if (!texture) {
+        if (!index) {
             throw SceneError::atLine(
-                mtlPath, mtlLine(mtlText, mtl.name, "map_Kd"),
+                mtlPath, mtlLine(mtlText, mtl.name, statement),
                 "texture '" + name + "' not found (looked for '" + path + "')");
         }
-        m.diffuseTexture = *texture;
-    }
+        return *index;
+    };
+    if (!mtl.diffuse_texname.empty())
+        m.diffuseTexture = texture(mtl.diffuse_texname, "map_Kd", TextureEncoding::Colour);
+
+    // Opacity: d (or 1 - Tr) and map_d (the image's alpha, or its grey without one) are
+    // stochastic coverage, as glTF's BLEND. Glass ignores d: exporters write d < 1 for what
+    // is meant to refract, and glass transmits already.
+    const float d = std::isfinite(mtl.dissolve) ? static_cast<float>(mtl.dissolve) : 1.0f;
+    if (!m.glass) m.alpha = std::clamp(d, 0.0f, 1.0f);
+    if (!mtl.alpha_texname.empty())
+        m.alphaTexture = texture(mtl.alpha_texname, "map_d", TextureEncoding::Coverage);
+    if (m.alpha < 1.0f || m.alphaTexture >= 0) m.alphaMode = AlphaMode::Blend;
+    if (m.alpha <= 0.0f)
+        spdlog::warn("{}: d 0 (or Tr 1) makes the material invisible: rays pass through it", where);
     return m;
 }
 
 std::vector<std::string> unmodelledMtlStatements(const tinyobj::material_t& mtl) {
     std::vector<std::string> out;
-    if (mtl.dissolve < 1.0) out.push_back("d / Tr (opacity below one: rendered opaque)");
-    if (!mtl.alpha_texname.empty()) out.push_back("map_d");
+    if (mtl.dissolve < 1.0 && (mtl.illum == 4 || mtl.illum == 6 || mtl.illum == 7))
+        out.push_back("d / Tr on glass (ignored: glass transmits by its Fresnel terms)");
     if (!mtl.bump_texname.empty()) out.push_back("bump / map_bump");
     if (!mtl.normal_texname.empty()) out.push_back("norm");
     if (!mtl.displacement_texname.empty()) out.push_back("disp");

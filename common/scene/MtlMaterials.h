@@ -75,9 +75,9 @@ Material defaultMaterial();
 /// (its diffuse and specular are not used).
 void conserveEnergy(Material& material, const std::string& where);
 
-/// The statements of an MTL material that igi reads but does not render (a dissolve `d` or
-/// `Tr` below opacity one, `map_d`, `bump`/`map_bump`, `norm`, `disp`, `map_Ks`, `map_Ns`,
-/// `map_Ke`), for the loader's one warning per MTL file.
+/// The statements of an MTL material that igi reads but does not render (`d` or `Tr` below
+/// opacity one on glass, `bump`/`map_bump`, `norm`, `disp`, `map_Ks`, `map_Ns`, `map_Ke`), for
+/// the loader's one warning per MTL file.
 std::vector<std::string> unmodelledMtlStatements(const tinyobj::material_t& mtl);
 
 }  // namespace igi

@@ -15,22 +15,38 @@ SceneAssets::SceneAssets(FileSource& files, Scene& scene, const SceneLimits& lim
       vertices_(limits.maxVertices, "vertices", "per scene"),
       texturePixels_(limits.maxTotalTexturePixels, "texture pixels", "per scene") {}
 
-std::optional<int> SceneAssets::textureFile(const std::string& path) {
-    auto cached = byKey_.find(path);
+namespace {
+
+// The cache key of an image decoded with `encoding`: one image may be both a colour and data
+// (rarely, but a file may say so), or a colour and a coverage map: one decode each.
+std::string keyOf(const std::string& key, TextureEncoding encoding) {
+    switch (encoding) {
+        case TextureEncoding::Data:
+            return key + "#data";
+        case TextureEncoding::Coverage:
+            return key + "#coverage";
+        default:
+            return key;
+    }
+}
+
+}  // namespace
+
+std::optional<int> SceneAssets::textureFile(const std::string& path, TextureEncoding encoding) {
+    auto cached = byKey_.find(keyOf(path, encoding));
     if (cached != byKey_.end()) return cached->second;
     const std::optional<std::string> found = locateFile(files_, path);
     if (!found) return std::nullopt;
-    auto cachedFound = byKey_.find(*found);
-    if (cachedFound != byKey_.end()) return byKey_[path] = cachedFound->second;
-    const int index = add(*found, *found, files_.read(*found));
-    byKey_[path] = index;
+    auto cachedFound = byKey_.find(keyOf(*found, encoding));
+    if (cachedFound != byKey_.end()) return byKey_[keyOf(path, encoding)] = cachedFound->second;
+    const int index = add(keyOf(*found, encoding), *found, files_.read(*found), encoding);
+    byKey_[keyOf(path, encoding)] = index;
     return index;
 }
 
 int SceneAssets::textureBytes(const std::string& key, const std::string& name,
                               const std::string& bytes, TextureEncoding encoding) {
-    // One image may be both a colour and data (rarely, but a file may say so): two decodes.
-    const std::string k = encoding == TextureEncoding::Data ? key + "#data" : key;
+    const std::string k = keyOf(key, encoding);
     auto cached = byKey_.find(k);
     if (cached != byKey_.end()) return cached->second;
     return add(k, name, bytes, encoding);

@@ -25,8 +25,10 @@ class SceneAssets {
     const SceneLimits& limits() const { return limits_; }
 
     /// Index in Scene::textures of the texture file at `path` (relative to the scene file),
-    /// found case-insensitively if need be and decoded once; nothing when no such file exists.
-    std::optional<int> textureFile(const std::string& path);
+    /// found case-insensitively if need be and decoded once per encoding; nothing when no such
+    /// file exists.
+    std::optional<int> textureFile(const std::string& path,
+                                   TextureEncoding encoding = TextureEncoding::Colour);
 
     /// Index of a texture decoded from bytes already in memory (glTF images), cached under
     /// `key`; `name` picks the decoder by its extension.

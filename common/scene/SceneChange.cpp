@@ -43,6 +43,17 @@ void apply(SceneState& s, const SceneChange& change) {
                 // So is the normal map, and its scale with it.
                 value.normalTexture = s.materials[c.material].normalTexture;
                 value.normalScale = s.materials[c.material].normalScale;
+                // Coverage is not changed live: which triangles have filter functions is
+                // fixed when the client builds its Embree geometry.
+                value.alphaMode = s.materials[c.material].alphaMode;
+                value.alpha = s.materials[c.material].alpha;
+                value.alphaCutoff = s.materials[c.material].alphaCutoff;
+                value.alphaTexture = s.materials[c.material].alphaTexture;
+                // Nor are the textures' uv transforms.
+                value.diffuseUv = s.materials[c.material].diffuseUv;
+                value.metallicRoughnessUv = s.materials[c.material].metallicRoughnessUv;
+                value.normalUv = s.materials[c.material].normalUv;
+                value.alphaUv = s.materials[c.material].alphaUv;
                 s.materials[c.material] = value;
             }
         },

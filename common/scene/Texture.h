@@ -20,9 +20,15 @@ struct Texture {
     /// are read as 0, and an environment map refuses them (EnvironmentJson.cpp).
     long long firstNonFinite = -1;
     float nonFiniteValue = 0.0f;  ///< its value
+    /// Coverage in [0, 1], row-major as texels: the image's alpha channel (never sRGB-decoded),
+    /// or for TextureEncoding::Coverage without one its grey; empty when every value is 1.
+    std::vector<float> alpha;
+    float alphaMinimum = 1.0f;  ///< the least value of `alpha` (1 when it is empty)
 
     /// Bilinear lookup with wrapping; (u, v) as in OBJ, v = 0 at the bottom.
     glm::vec3 sample(glm::vec2 uv) const;
+    /// The same for `alpha`: 1 when the texture has none.
+    float sampleAlpha(glm::vec2 uv) const;
 };
 
 }  // namespace igi

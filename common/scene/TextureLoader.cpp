@@ -26,9 +26,10 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kMaxTextureSide = 32768;
-// Colour comes from the first three channels; more (alpha, depth, a TIFF claiming 65535) are
-// never read.
-constexpr int kReadChannels = 3;
+// Colour comes from the first three channels and coverage from the alpha channel; more (depth,
+// a TIFF claiming 65535) are never read.
+constexpr int kColourChannels = 3;
+constexpr int kMaxReadChannels = 4;
 
 float srgbToLinear(float c) {
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
@@ -89,14 +90,18 @@ class TempImageFile {
 std::unique_ptr<OIIO::ImageInput> openImage(const std::string& name, const std::string& bytes,
                                             OIIO::Filesystem::IOMemReader& proxy,
                                             std::unique_ptr<TempImageFile>& temp) {
+    // Colours as the file stores them: glTF base colours and PNGs are not premultiplied, and
+    // OpenImageIO would otherwise multiply them by alpha as it reads.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
     auto in = OIIO::ImageInput::create(name, false, nullptr, &proxy);
     if (in && in->supports("ioproxy")) {
         OIIO::ImageSpec spec;
-        if (in->set_ioproxy(&proxy) && in->open(name, spec)) return in;
+        if (in->set_ioproxy(&proxy) && in->open(name, spec, config)) return in;
     }
     OIIO::geterror();  // clear the failed attempt's message
     temp = std::make_unique<TempImageFile>(name, bytes);
-    in = OIIO::ImageInput::open(temp->path());
+    in = OIIO::ImageInput::open(temp->path(), &config);
     if (!in) throw SceneError::inFile(name, "cannot decode image: " + OIIO::geterror());
     return in;
 }
@@ -118,11 +123,32 @@ glm::vec3 rgbAt(const std::vector<T>& pixels, std::size_t i, int channels, Decod
     return {decode(p[0]), decode(p[1]), decode(p[2])};
 }
 
-void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture, bool data) {
+// The channel that holds alpha among the first kMaxReadChannels, or -1: the one the file
+// names, else the last of a grey-alpha or RGBA image.
+int alphaChannelOf(const OIIO::ImageSpec& spec) {
+    int a = spec.alpha_channel;
+    if (a < 0 && (spec.nchannels == 2 || spec.nchannels == 4)) a = spec.nchannels - 1;
+    return a >= 0 && a < kMaxReadChannels && a < spec.nchannels ? a : -1;
+}
+
+// Keeps texture.alpha only when some value is below one.
+void finishAlpha(Texture& texture) {
+    float least = 1.0f;
+    for (float a : texture.alpha) least = std::min(least, a);
+    texture.alphaMinimum = least;
+    if (least >= 1.0f) std::vector<float>().swap(texture.alpha);
+}
+
+void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture,
+                TextureEncoding encoding) {
     const OIIO::ImageSpec& spec = in.spec();
-    const int channels = std::min(spec.nchannels, kReadChannels);
+    const bool data = encoding != TextureEncoding::Colour;
+    const int alphaChannel = alphaChannelOf(spec);
+    const int colours = std::min(spec.nchannels, kColourChannels);
+    const int channels = std::max(colours, alphaChannel + 1);
     const std::size_t count = static_cast<std::size_t>(texture.width) * texture.height;
     texture.texels.resize(count);
+    if (alphaChannel >= 0) texture.alpha.resize(count);
     if (spec.format == OIIO::TypeDesc::UINT8 && !isLinear(spec) && !data) {
         // The common case (JPEG, PNG): a table lookup per channel instead of a pow.
         std::vector<unsigned char> pixels(count * channels);
@@ -133,24 +159,39 @@ void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture,
         for (std::size_t i = 0; i < count; ++i) {
             texture.texels[i] =
                 rgbAt(pixels, i, channels, [&](unsigned char c) { return table[c]; });
+            if (alphaChannel >= 0)
+                texture.alpha[i] = static_cast<float>(pixels[i * channels + alphaChannel]) / 255.0f;
         }
-        return;
-    }
-    std::vector<float> pixels(count * channels);
-    if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data())) {
-        throw SceneError::inFile(name, "cannot decode image: " + in.geterror());
-    }
-    const bool linear = data || isLinear(spec);
-    for (std::size_t i = 0; i < count; ++i) {
-        texture.texels[i] = rgbAt(pixels, i, channels, [&](float c) {
-            if (!std::isfinite(c) && texture.firstNonFinite < 0) {
-                texture.firstNonFinite = static_cast<long long>(i);
-                texture.nonFiniteValue = c;
+    } else {
+        std::vector<float> pixels(count * channels);
+        if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data())) {
+            throw SceneError::inFile(name, "cannot decode image: " + in.geterror());
+        }
+        const bool linear = data || isLinear(spec);
+        for (std::size_t i = 0; i < count; ++i) {
+            texture.texels[i] = rgbAt(pixels, i, channels, [&](float c) {
+                if (!std::isfinite(c) && texture.firstNonFinite < 0) {
+                    texture.firstNonFinite = static_cast<long long>(i);
+                    texture.nonFiniteValue = c;
+                }
+                c = std::isfinite(c) ? std::max(c, 0.0f) : 0.0f;
+                return linear ? c : srgbToLinear(c);
+            });
+            if (alphaChannel >= 0) {
+                const float a = pixels[i * channels + alphaChannel];
+                texture.alpha[i] = std::isfinite(a) ? std::clamp(a, 0.0f, 1.0f) : 0.0f;
             }
-            c = std::isfinite(c) ? std::max(c, 0.0f) : 0.0f;
-            return linear ? c : srgbToLinear(c);
-        });
+        }
     }
+    // A coverage map without an alpha channel (MTL map_d in grey): its grey is the coverage.
+    if (alphaChannel < 0 && encoding == TextureEncoding::Coverage) {
+        texture.alpha.resize(count);
+        for (std::size_t i = 0; i < count; ++i) {
+            const glm::vec3 t = texture.texels[i];
+            texture.alpha[i] = std::clamp((t.x + t.y + t.z) / 3.0f, 0.0f, 1.0f);
+        }
+    }
+    finishAlpha(texture);
 }
 
 void checkImageSize(const std::string& name, const OIIO::ImageSpec& spec,
@@ -198,7 +239,7 @@ Texture decodeTexture(const std::string& name, const std::string& bytes,
     texture.path = name;
     texture.width = spec.width;
     texture.height = spec.height;
-    readTexels(*in, name, texture, encoding == TextureEncoding::Data);
+    readTexels(*in, name, texture, encoding);
     in->close();
     texture.average = meanOf(texture.texels);
     texture.minimum = texture.texels.empty() ? glm::vec3(0.0f) : texture.texels.front();

@@ -25,13 +25,17 @@ struct TextureLimits {
 enum class TextureEncoding {
     Colour,  ///< sRGB-encoded unless the file says it is linear (colours: base colour, Kd)
     Data,    ///< the values themselves (glTF metallicRoughnessTexture, normal maps)
+    /// As Data, and a coverage map: Texture::alpha is the alpha channel, or the grey of an
+    /// image without one (MTL map_d).
+    Coverage,
 };
 
 /// Decodes an image into linear RGB. Integer images (8- or 16-bit) are taken as sRGB-encoded
 /// unless the file says it is linear or `encoding` is Data; float images are linear. Grey images
-/// are replicated to RGB, alpha is dropped. `name` (its extension) picks the decoder and names the
-/// texture. Throws SceneError naming `name` when the bytes are not a readable image, or when its
-/// header claims more pixels than `limits` allow (then no pixel memory is allocated).
+/// are replicated to RGB. An alpha channel (not premultiplied into the colours) becomes
+/// Texture::alpha when some value is below one. `name` (its extension) picks the decoder and names
+/// the texture. Throws SceneError naming `name` when the bytes are not a readable image, or when
+/// its header claims more pixels than `limits` allow (then no pixel memory is allocated).
 Texture decodeTexture(const std::string& name, const std::string& bytes,
                       const TextureLimits& limits = {},
                       TextureEncoding encoding = TextureEncoding::Colour);
