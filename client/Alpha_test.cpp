@@ -411,10 +411,7 @@ TEST(Alpha, AlphaBlendModeTestLoadsAndRenders) {
     for (Material& m : opaque.materials) m.alphaMode = AlphaMode::Opaque;
     testing::InProcessRenderer opaqueRenderer(opaque);
     const Image plain = opaqueRenderer.render(2);
-    double difference = 0;
-    for (std::size_t i = 0; i < image.pixels.size(); ++i)
-        difference += glm::length(glm::dvec3(image.pixels[i] - plain.pixels[i]));
-    EXPECT_GT(difference / image.pixels.size(), 1e-3);
+    EXPECT_GT(testing::meanDifference(image, plain), 1e-3);
 }
 
 }  // namespace

@@ -223,4 +223,13 @@ inline glm::dvec3 meanOf(const Image& image) {
     return sum / double(image.pixels.size());
 }
 
+/// The mean length of the per-pixel difference of two images of one size (to tell that a
+/// feature changed what is rendered).
+inline double meanDifference(const Image& a, const Image& b) {
+    double difference = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        difference += glm::length(glm::dvec3(a.pixels[i] - b.pixels[i]));
+    return difference / double(a.pixels.size());
+}
+
 }  // namespace igi::testing

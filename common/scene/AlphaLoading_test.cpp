@@ -198,20 +198,7 @@ TEST(AlphaLive, MaterialChangesKeepCoverageAndUvTransforms) {
 
 // ---- glTF
 
-Scene plainGltfWith(const std::function<void(nlohmann::json&)>& edit,
-                    std::map<std::string, std::string> files = {}) {
-    auto read = [](const char* name) {
-        std::ifstream in(test::testdataDir() / "gltf" / name, std::ios::binary);
-        std::stringstream s;
-        s << in.rdbuf();
-        return s.str();
-    };
-    nlohmann::json gltf = nlohmann::json::parse(read("plain.gltf"));
-    edit(gltf);
-    files["plain.gltf"] = gltf.dump();
-    files["plain.bin"] = read("plain.bin");
-    return test::parseInline(R"({"meshes": [{"file": "plain.gltf"}]})", files);
-}
+using test::plainGltfWith;
 
 TEST(AlphaGltf, AlphaModeCutoffAndFactor) {
     test::CapturedLog log;

@@ -116,19 +116,7 @@ TEST(GltfLoader, InvalidJsonIsAnErrorNamingTheFile) {
     EXPECT_NE(what.find("m.gltf: cannot load glTF"), std::string::npos) << what;
 }
 
-// plain.gltf with `edit` applied to its JSON, loaded as the scene's one mesh.
-Scene plainGltfWith(const std::function<void(nlohmann::json&)>& edit) {
-    auto read = [](const char* name) {
-        std::ifstream in(test::testdataDir() / "gltf" / name, std::ios::binary);
-        std::stringstream s;
-        s << in.rdbuf();
-        return s.str();
-    };
-    nlohmann::json gltf = nlohmann::json::parse(read("plain.gltf"));
-    edit(gltf);
-    return test::parseInline(R"({"meshes": [{"file": "plain.gltf"}]})",
-                             {{"plain.gltf", gltf.dump()}, {"plain.bin", read("plain.bin")}});
-}
+using test::plainGltfWith;
 
 // A required extension that igi does not model is an error naming it; a used one, and every
 // material feature rendered without, is named in one warning per file.

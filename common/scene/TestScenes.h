@@ -4,6 +4,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -11,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <spdlog/sinks/ostream_sink.h>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "scene/FileSource.h"
@@ -76,5 +79,24 @@ class CapturedLog {
     std::shared_ptr<spdlog::logger> previous_;
     std::ostringstream text_;
 };
+
+/// The bytes of a file in testdataDir()/`folder`.
+inline std::string testdataFile(const std::string& folder, const std::string& name) {
+    std::ifstream in(testdataDir() / folder / name, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+/// gltf/plain.gltf with `edit` applied to its JSON, loaded as the scene's one mesh, beside
+/// `files` (the textures the edit refers to).
+inline Scene plainGltfWith(const std::function<void(nlohmann::json&)>& edit,
+                           std::map<std::string, std::string> files = {}) {
+    nlohmann::json gltf = nlohmann::json::parse(testdataFile("gltf", "plain.gltf"));
+    edit(gltf);
+    files["plain.gltf"] = gltf.dump();
+    files["plain.bin"] = testdataFile("gltf", "plain.bin");
+    return parseInline(R"({"meshes": [{"file": "plain.gltf"}]})", std::move(files));
+}
 
 }  // namespace igi::test

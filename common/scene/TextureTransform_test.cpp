@@ -16,20 +16,9 @@
 namespace igi {
 namespace {
 
+// A 1 x 1 PGM as every texture: only the materials are looked at.
 Scene plainGltfWith(const std::function<void(nlohmann::json&)>& edit) {
-    auto read = [](const char* name) {
-        std::ifstream in(test::testdataDir() / "gltf" / name, std::ios::binary);
-        std::stringstream s;
-        s << in.rdbuf();
-        return s.str();
-    };
-    nlohmann::json gltf = nlohmann::json::parse(read("plain.gltf"));
-    edit(gltf);
-    // A 1 x 1 PGM as every texture: only the materials are looked at.
-    return test::parseInline(R"({"meshes": [{"file": "plain.gltf"}]})",
-                             {{"plain.gltf", gltf.dump()},
-                              {"plain.bin", read("plain.bin")},
-                              {"t.pgm", std::string("P5\n1 1\n255\n") + char(128)}});
+    return test::plainGltfWith(edit, {{"t.pgm", std::string("P5\n1 1\n255\n") + char(128)}});
 }
 
 // glTF's uv (u, v down) of igi's (u, v up).
