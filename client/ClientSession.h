@@ -13,12 +13,12 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/steady_timer.hpp>
 
-#include "EmbreeDevice.h"
 #include "Messages.h"
-#include "SceneGeometry.h"
 #include "SceneVersion.h"
 #include "net/ClusterKey.h"
 #include "net/Connection.h"
+#include "tracing/EmbreeDevice.h"
+#include "tracing/SceneGeometry.h"
 #include "util/ThreadPool.h"
 
 namespace igi {

@@ -9,10 +9,10 @@
 
 #include <gtest/gtest.h>
 
-#include "TestScenes.h"
 #include "image/ImageCompare.h"
 #include "image/ImageIO.h"
 #include "scene/SceneLoader.h"
+#include "testing/TestScenes.h"
 #include "util/TestPaths.h"
 
 namespace igi {

@@ -13,16 +13,16 @@
 
 #include <gtest/gtest.h>
 
-#include "CausticShooter.h"
 #include "Codec.h"
-#include "IgiIntegrator.h"
-#include "Lights.h"
-#include "TestScenes.h"
 #include "image/ImageCompare.h"
 #include "image/ToneMap.h"
+#include "integrators/IgiIntegrator.h"
+#include "lighting/CausticShooter.h"
+#include "lights/Lights.h"
 #include "math/Color.h"
 #include "math/Warp.h"
 #include "scene/CameraModel.h"
+#include "testing/TestScenes.h"
 
 namespace igi {
 namespace {

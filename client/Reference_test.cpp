@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include "TestScenes.h"
 #include "image/ImageCompare.h"
 #include "scene/SceneLoader.h"
+#include "testing/TestScenes.h"
 #include "util/TestPaths.h"
 
 namespace igi {

@@ -3,10 +3,10 @@
 #include <cstdint>
 #include <memory>
 
-#include "SceneGeometry.h"
 #include "TileRenderer.h"
-#include "TraceableScene.h"
 #include "scene/SceneState.h"
+#include "tracing/SceneGeometry.h"
+#include "tracing/TraceableScene.h"
 
 namespace igi {
 

@@ -5,13 +5,13 @@
 #include <future>
 #include <mutex>
 
-#include "CacheLighting.h"
-#include "IgiLighting.h"
-#include "PhotonMapLighting.h"
-#include "ScreenCaustics.h"
-#include "SelectiveLighting.h"
-#include "StreamLighting.h"
+#include "lighting/IgiLighting.h"
 #include "math/Warp.h"
+#include "modes/cache/CacheLighting.h"
+#include "modes/photonmap/PhotonMapLighting.h"
+#include "modes/photonmap/ScreenCaustics.h"
+#include "modes/spt/SelectiveLighting.h"
+#include "modes/stream/StreamLighting.h"
 
 namespace igi {
 namespace {

@@ -4,16 +4,16 @@
 #include <functional>
 #include <memory>
 
-#include "IgiIntegrator.h"
-#include "LightingCache.h"
-#include "LightingMethod.h"
-#include "LightingSetBuilder.h"
-#include "Lights.h"
 #include "Messages.h"
-#include "PathIntegrator.h"
-#include "TraceableScene.h"
+#include "integrators/IgiIntegrator.h"
+#include "integrators/PathIntegrator.h"
+#include "lighting/LightingCache.h"
+#include "lighting/LightingMethod.h"
+#include "lighting/LightingSetBuilder.h"
+#include "lights/Lights.h"
 #include "render/Tile.h"
 #include "scene/CameraModel.h"
+#include "tracing/TraceableScene.h"
 #include "util/ThreadPool.h"
 
 namespace igi {

@@ -2,8 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "Codec.h"
-#include "TestScenes.h"
 #include "scene/SceneLoader.h"
+#include "testing/TestScenes.h"
 #include "util/TestPaths.h"
 
 namespace igi {

@@ -804,8 +804,8 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
       "from `../shared/scenes`). Variants: `igi-power` is the paper's IGI (light samples by "
       "power, `--light-sampling power`, and every point connected to every VPL of its set, "
       "`--vpl-sampling all`); `igi-tree` takes its light samples from the light tree "
-      "(client/LightTree.h); `igi-importance` also chooses each point's VPLs by importance "
-      "(`--vpl-sampling importance`, client/VplChoice.h: each set's light paths leave a pool of "
+      "(client/lights/LightTree.h); `igi-importance` also chooses each point's VPLs by importance "
+      "(`--vpl-sampling importance`, client/lights/VplChoice.h: each set's light paths leave a pool of "
       "8 x 18 VPLs and each point connects to 18 of them, drawn by what each can give it), what "
       "`auto` picks from 8 emitters on. The path tracer takes one light sample per vertex by "
       "power or by the tree.")

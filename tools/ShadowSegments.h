@@ -4,7 +4,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "TraceableScene.h"
+#include "tracing/TraceableScene.h"
 
 namespace igi {
 

@@ -20,11 +20,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "EmbreeDevice.h"
-#include "SceneGeometry.h"
+#include "tracing/EmbreeDevice.h"
+#include "tracing/SceneGeometry.h"
 #include "ShadowSegments.h"
 #include "TileRenderer.h"
-#include "TraceableScene.h"
+#include "tracing/TraceableScene.h"
 #include "render/Tile.h"
 #include "scene/SceneLoader.h"
 #include "scene/SceneState.h"

@@ -1,6 +1,6 @@
 // Alpha as the loaders read it: the alpha channel of textures (not premultiplied into the
 // colours), coverage maps, MTL d / Tr / map_d and glTF alphaMode, alphaCutoff and
-// baseColorFactor's alpha. The client's cut-outs are tested in client/Alpha_test.cpp.
+// baseColorFactor's alpha. The client's cut-outs are tested in client/tracing/Alpha_test.cpp.
 
 #include <OpenImageIO/imageio.h>
 

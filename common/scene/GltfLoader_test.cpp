@@ -146,7 +146,7 @@ TEST(GltfFeatures, UnsupportedRequiredExtensionIsAnErrorAndUnmodelledOnesAreName
                         "KHR_materials_clearcoat, KHR_materials_sheen"),
               std::string::npos)
         << text;
-    // alphaMode is modelled (client/AlphaCoverage.h): not named.
+    // alphaMode is modelled (client/tracing/AlphaCoverage.h): not named.
     EXPECT_EQ(text.find("alphaMode"), std::string::npos) << text;
     EXPECT_NE(text.find("occlusionTexture"), std::string::npos) << text;
     // One warning per file, not per material.

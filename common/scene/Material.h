@@ -23,7 +23,7 @@ enum class Reflection : std::uint8_t {
 };
 
 /// How a material covers its surface: glTF's alphaMode; MTL's `d` and `map_d` are Blend. A
-/// material that can let a ray through anywhere (client/AlphaCoverage.h, hasCutOuts) is traced
+/// material that can let a ray through anywhere (client/tracing/AlphaCoverage.h, hasCutOuts) is traced
 /// in Embree geometry of its own whose filter functions decide, per hit, whether it counts.
 enum class AlphaMode : std::uint8_t {
     Opaque,  ///< every hit counts; alpha is ignored
@@ -66,7 +66,7 @@ struct Material {
     int metallicRoughnessTexture = -1;  ///< linear: green scales roughness, blue metallic
     /// A tangent-space normal map (glTF normalTexture, linear, OpenGL convention: green toward
     /// +v), or -1. The shading normal is the frame of the tangent, bitangent and interpolated
-    /// normal applied to (2 texel - 1) with x and y scaled by `normalScale` (client/NormalMap.h).
+    /// normal applied to (2 texel - 1) with x and y scaled by `normalScale` (client/materials/NormalMap.h).
     int normalTexture = -1;
     float normalScale = 1.0f;  ///< glTF normalTexture.scale
     /// Coverage: alpha is `alpha` times the texture's (Texture::alpha) at the hit. Read when

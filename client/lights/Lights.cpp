@@ -1,0 +1,258 @@
+#include "lights/Lights.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "math/Color.h"
+#include "math/Frame.h"
+#include "math/Warp.h"
+
+namespace igi {
+namespace {
+
+std::uint64_t triangleKey(std::uint32_t mesh, std::uint32_t triangle) {
+    return (std::uint64_t(mesh) << 32) | triangle;
+}
+
+// A triangle's corners from the smallest one on, in its own cyclic order: the same for the same
+// triangle listed twice, whatever corner it starts from, but not for the reversed winding (which
+// faces, and emits, the other way).
+using Corners = std::array<float, 9>;
+Corners cornersOf(const TraceableScene::WorldTriangle& t) {
+    const glm::vec3 p[3] = {t.p0, t.p1, t.p2};
+    auto key = [&](int first) {
+        Corners c;
+        for (int i = 0; i < 3; ++i)
+            for (int k = 0; k < 3; ++k) c[3 * i + k] = p[(first + i) % 3][k];
+        return c;
+    };
+    return std::min({key(0), key(1), key(2)});
+}
+
+}  // namespace
+
+Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>& punctualLights,
+               LightSampling sampling) {
+    std::vector<float> power;
+    // A face listed twice (duplicated in its file) is one surface, seen once: it must be one
+    // light, or sampling it would count its light twice. The copy maps to the same emitter so that
+    // a path that hits the copy finds the density of the light it is.
+    std::map<Corners, std::uint32_t> emitterAt;
+    for (const auto& t : traceable.emissiveTriangles()) {
+        Emitter e;
+        e.p0 = t.p0;
+        e.e1 = t.p1 - t.p0;
+        e.e2 = t.p2 - t.p0;
+        const glm::vec3 c = glm::cross(e.e1, e.e2);
+        const float len = glm::length(c);
+        if (!(len > 0) || !std::isfinite(len)) continue;  // a degenerate triangle emits nothing
+        const auto [it, fresh] =
+            emitterAt.try_emplace(cornersOf(t), std::uint32_t(emitters_.size()));
+        if (!fresh) {
+            triangleToEmitter_[triangleKey(t.mesh, t.triangle)] = it->second;
+            continue;
+        }
+        e.normal = c / len;
+        e.area = 0.5f * len;
+        e.emitted = traceable.materials()[t.material].emission;
+        triangleToEmitter_[triangleKey(t.mesh, t.triangle)] = std::uint32_t(emitters_.size());
+        emitters_.push_back(e);
+        power.push_back(kPi * e.area * luminance(e.emitted));  // one-sided Lambertian emitter
+    }
+    center_ = traceable.center();
+    radius_ = 0.5f * traceable.diagonal();
+    const float sunDistance = kSunDistance * radius_;
+    std::vector<float> treePower = power;  // a directional light's is its far point's
+    std::size_t finite = emitters_.size();
+    for (const PunctualLight& p : punctualLights) {
+        if (!p.on) continue;
+        Emitter e;
+        e.p0 = p.position;
+        e.emitted = p.intensity;
+        e.normal = p.direction;
+        if (p.kind == LightKind::Point) {
+            e.kind = Kind::Point;
+            power.push_back(4.0f * kPi * luminance(p.intensity));
+            ++finite;
+        } else if (p.kind == LightKind::Spot) {
+            e.kind = Kind::Spot;
+            e.cosOuter = spotCosOuter(p);
+            e.spotScale = spotScale(p);
+            // At most the power of its outer cone at full intensity.
+            power.push_back(2.0f * kPi * (1.0f - e.cosOuter) * luminance(p.intensity));
+            ++finite;
+        } else {
+            e.kind = Kind::Directional;
+            const float half = 0.5f * glm::radians(p.angleDeg);
+            // 1 - cos from the sine, which keeps its digits for the real sun's 0.27 degrees.
+            e.oneMinusCos = 2.0f * std::sin(0.5f * half) * std::sin(0.5f * half);
+            // E = L pi sin^2(half), and a direction uniform in the cone estimates it as
+            // L * solid angle = E * 2 (1 - cos) / sin^2 = E * 2 / (1 + cos).
+            e.sunScale = 2.0f / (2.0f - e.oneMinusCos);
+            hasDirectional_ = true;
+            // What crosses the disk of the scene's bounding sphere.
+            power.push_back(kPi * radius_ * radius_ * luminance(p.intensity));
+        }
+        treePower.push_back(e.kind == Kind::Directional
+                                ? 4.0f * kPi * luminance(p.intensity) * sunDistance * sunDistance
+                                : power.back());
+        emitters_.push_back(e);
+    }
+    if (traceable.environment().present()) {
+        environment_ = &traceable.environment();
+        environmentIndex_ = std::uint32_t(emitters_.size());
+        Emitter e;
+        e.kind = Kind::Environment;
+        emitters_.push_back(e);
+        hasDirectional_ = true;
+        // What crosses the disk of the bounding sphere from every direction: 4 pi A L_mean.
+        const float mean = environment_->meanLuminance();
+        power.push_back(4.0f * kPi * kPi * radius_ * radius_ * mean);
+        // For the tree: a plane's irradiance under it (pi L_mean) at the far sphere's distance.
+        treePower.push_back(4.0f * kPi * kPi * mean * sunDistance * sunDistance);
+    }
+    // A sun of 1e5 lux beside a room's lamps would take nearly every light path (or the lamps
+    // every one of a dim sky's): when directional lights share the scene with others, half the
+    // choices are by power and half uniform over the lights, so none is starved.
+    if (hasDirectional_ && finite > 0) {
+        double total = 0;
+        for (float w : power) total += w;
+        if (total > 0)
+            for (float& w : power) w = float(0.5 * double(w) / total + 0.5 / double(power.size()));
+    }
+    distribution_ = Distribution1D(power);
+    if (!usesLightTree(sampling, emitters_.size()) || distribution_.empty()) return;
+    std::vector<LightTree::Light> bounds(emitters_.size());
+    for (std::size_t i = 0; i < emitters_.size(); ++i) {
+        const Emitter& e = emitters_[i];
+        LightTree::Light& b = bounds[i];
+        // A directional light is its far point (LightSample) in every direction it may come
+        // from: the tree weighs it by the irradiance it gives, as a point light's.
+        const glm::vec3 p0 =
+            e.kind == Kind::Directional ? center_ - e.normal * (radius_ + sunDistance) : e.p0;
+        b.lo = glm::min(p0, glm::min(p0 + e.e1, p0 + e.e2));
+        b.hi = glm::max(p0, glm::max(p0 + e.e1, p0 + e.e2));
+        if (e.kind == Kind::Environment) {  // the whole far sphere
+            b.lo = center_ - glm::vec3(radius_ + sunDistance);
+            b.hi = center_ + glm::vec3(radius_ + sunDistance);
+        }
+        b.normal = e.normal;
+        b.omni = e.isPoint();
+        b.power = treePower[i];
+    }
+    tree_ = LightTree(bounds);
+}
+
+LightSample Lights::sample(float uSelect, glm::vec2 uPoint, float* uRemapped) const {
+    if (empty()) return {};
+    const std::size_t i = distribution_.sample(uSelect, uRemapped);
+    return pointOn(i, distribution_.pdf(i), uPoint);
+}
+
+LightSample Lights::sampleAt(glm::vec3 p, glm::vec3 n, float uSelect, glm::vec2 uPoint,
+                             LightTree::Memo* memo) const {
+    if (!choosesPerPoint()) return sample(uSelect, uPoint);
+    std::uint32_t i = 0;
+    float selection = 0;
+    if (!tree_.sample(p, n, uSelect, i, selection, memo)) return {};
+    return pointOn(i, selection, uPoint);
+}
+
+LightSample Lights::pointOn(std::size_t i, float select, glm::vec2 uPoint) const {
+    LightSample s;
+    const Emitter& e = emitters_[i];
+    s.emitted = e.emitted;
+    s.isPoint = e.isPoint();
+    s.select = select;
+    if (e.kind == Kind::Environment) {
+        const EnvironmentMap::Sample sky = environment_->sample(uPoint);
+        if (!(sky.pdf > 0)) return s;
+        const float distance = radius_ + kSunDistance * radius_;
+        s.directional = true;
+        s.direction = -sky.toSky;
+        s.irradiance = sky.radiance / sky.pdf;
+        s.position = center_ + sky.toSky * distance;
+        s.normal = s.direction;  // facing the scene
+        s.emitted = sky.radiance;
+        // Area density on the far sphere whose solid angle from the scene is the sky's.
+        s.pdf = select * sky.pdf / (distance * distance);
+        return s;
+    }
+    if (e.kind == Kind::Triangle) {
+        const glm::vec2 b = squareToUniformTriangle(uPoint);
+        s.position = e.p0 + b.x * e.e1 + b.y * e.e2;
+        s.normal = e.normal;
+        s.pdf = select / e.area;
+        return s;
+    }
+    s.pdf = select;
+    s.position = e.p0;
+    if (e.kind == Kind::Spot) {
+        s.spot = true;
+        s.normal = e.normal;
+        s.cosOuter = e.cosOuter;
+        s.spotScale = e.spotScale;
+    } else if (e.kind == Kind::Directional) {
+        s.directional = true;
+        s.direction = e.normal;
+        if (e.oneMinusCos > 0) {
+            // Uniform in the disk's cone: cos = 1 - u (1 - cos max), its sine from 1 - cos.
+            const float c1 = uPoint.x * e.oneMinusCos;
+            const float sine = std::sqrt(std::max(0.0f, c1 * (2.0f - c1)));
+            const float phi = 2.0f * kPi * uPoint.y;
+            s.direction = glm::normalize(
+                Frame(e.normal).toWorld({sine * std::cos(phi), sine * std::sin(phi), 1.0f - c1}));
+        }
+        s.irradiance = e.emitted * e.sunScale;
+        const float distance = radius_ + kSunDistance * radius_;
+        s.position = center_ - s.direction * distance;
+        s.emitted = s.irradiance * (distance * distance);
+    }
+    return s;
+}
+
+float Lights::environmentPdfAt(glm::vec3 p, glm::vec3 n, glm::vec3 toSky) const {
+    if (!environment_) return 0.0f;
+    const float selection = choosesPerPoint() ? tree_.probability(p, n, environmentIndex_)
+                                              : distribution_.pdf(environmentIndex_);
+    return selection * environment_->pdf(toSky);
+}
+
+glm::vec3 Lights::diskOrigin(glm::vec3 direction, glm::vec2 u) const {
+    const glm::vec2 d = squareToUniformDisk(u);
+    // Just outside the sphere, so that nothing in the scene is behind the start.
+    return center_ + Frame(direction).toWorld({d.x * radius_, d.y * radius_, -1.001f * radius_});
+}
+
+float Lights::diskArea() const {
+    return kPi * radius_ * radius_;
+}
+
+float Lights::areaPdfAt(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p,
+                        glm::vec3 n) const {
+    const auto it = triangleToEmitter_.find(triangleKey(mesh, triangle));
+    if (it == triangleToEmitter_.end()) return 0;
+    const float selection =
+        choosesPerPoint() ? tree_.probability(p, n, it->second) : distribution_.pdf(it->second);
+    return selection / emitters_[it->second].area;
+}
+
+Vpl directLightVpl(const LightSample& s, const TraceableScene& scene, int samples) {
+    Vpl v;
+    v.omni = s.isPoint;
+    v.normal = s.normal;
+    v.spot = s.spot;
+    v.spotCosOuter = s.cosOuter;
+    v.spotScale = s.spotScale;
+    v.position = s.isPoint ? s.position : scene.offsetOrigin(s.position, s.normal);
+    v.power = s.emitted / (s.pdf * float(samples));
+    v.areaPdf = s.isPoint ? 0.0f : s.pdf;
+    return v;
+}
+
+}  // namespace igi

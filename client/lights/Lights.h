@@ -1,0 +1,130 @@
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "lights/LightTree.h"
+#include "lights/Vpl.h"
+#include "render/RenderSettings.h"
+#include "sampling/Distribution1D.h"
+#include "scene/Scene.h"
+#include "tracing/TraceableScene.h"
+
+namespace igi {
+
+/// A point chosen on a light source.
+///
+/// An environment sample is an area-light sample on a sphere kSunDistance radii away, facing
+/// the scene, whose area density gives the environment's solid-angle density there: receivers
+/// connect to it (and weigh it against BRDF sampling) as to a point on a quad light.
+///
+/// A directional light's sample is a point light far outside the scene (kSunDistance radii
+/// beyond its bounding sphere, in the sampled direction) whose intensity gives the sun's
+/// irradiance at the scene: every receiver connects to it as to a point light, with a parallax
+/// and a 1/d^2 variation across the scene below 2e-5. Light paths leave it from the disk
+/// across the scene's bounding sphere instead (Lights::diskOrigin), along `direction`.
+struct LightSample {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f};   ///< emitting side of an area light; a spot light's axis
+    glm::vec3 emitted{0.0f};  ///< radiance of an area light, intensity (W/sr) of a point light
+                              ///< (on the axis for a spot)
+    float pdf = 0;            ///< selection probability times 1/area (area lights), or selection
+    float select = 0;         ///< the selection probability alone
+    bool isPoint = false;     ///< point, spot or directional: a delta position
+    bool spot = false;        ///< emitted times spotRamp(cosOuter, spotScale, cos to the axis)
+    float cosOuter = -1.0f, spotScale = 0.0f;
+    /// A directional light or the environment: parallel light from infinitely far away.
+    bool directional = false;
+    glm::vec3 direction{0.0f};  ///< directional: the way its light travels, as sampled
+    /// Directional: on a plane facing `direction`, divided by the density of `direction` (for
+    /// the environment: radiance over its solid-angle density).
+    glm::vec3 irradiance{0.0f};
+};
+
+/// How far (in scene radii) past the scene a directional light's sample sits.
+constexpr float kSunDistance = 1e5f;
+
+/// Every light source of a scene: emissive triangles (from Ke materials and quad lights; zero-area
+/// ones skipped, a face listed twice counted once) and point lights. Light paths leave them by
+/// emitted power; a point that receives light chooses them either by power too or, with many
+/// lights, by what each could give it there (a LightTree), so that its few samples go to the
+/// lights that matter to it.
+class Lights {
+  public:
+    /// The emissive triangles of `traceable` (quad lights included) and the point lights that
+    /// are on; `sampling` says how a receiving point chooses among them (Auto: the tree from
+    /// kLightTreeMinLights lights on).
+    Lights(const TraceableScene& traceable, const std::vector<PunctualLight>& punctualLights,
+           LightSampling sampling = LightSampling::Power);
+
+    bool empty() const { return distribution_.empty(); }
+    std::size_t count() const { return emitters_.size(); }
+    /// Whether sampleAt() chooses by the receiving point (the tree) rather than by power.
+    bool choosesPerPoint() const { return !tree_.empty(); }
+
+    /// Chooses a light with uSelect (by power) and a point on it with uPoint. `uRemapped`, if
+    /// given, receives uSelect rescaled within the chosen light: a fresh uniform number.
+    LightSample sample(float uSelect, glm::vec2 uPoint, float* uRemapped = nullptr) const;
+
+    /// The same for light arriving at p (unit normal n, front side only): by the tree when
+    /// choosesPerPoint(), else as sample().
+    /// `memo` (for several samples at one p and n) saves weighing the tree's nodes again.
+    LightSample sampleAt(glm::vec3 p, glm::vec3 n, float uSelect, glm::vec2 uPoint,
+                         LightTree::Memo* memo = nullptr) const;
+
+    /// Area-measure density with which sampleAt(p, n) picks a point on the emissive triangle
+    /// (mesh, triangle), for multiple importance sampling; 0 if it is not a light.
+    float areaPdfAt(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p, glm::vec3 n) const;
+
+    /// Total emitted power, summed luminance (for tests and statistics).
+    double totalPower() const { return distribution_.total(); }
+    /// Whether some light is directional (light paths then start on diskOrigin's disk).
+    bool hasDirectional() const { return hasDirectional_; }
+    /// The density (solid angle) with which sampleAt(p, n) picks the environment in the
+    /// direction `toSky`, for multiple importance sampling; 0 without one.
+    float environmentPdfAt(glm::vec3 p, glm::vec3 n, glm::vec3 toSky) const;
+
+    /// Where a light path of a directional light travelling along unit `direction` starts: a
+    /// point, uniform by u, on the disk of the scene's bounding sphere's radius that faces
+    /// `direction`, just outside the sphere. Its area is diskArea().
+    glm::vec3 diskOrigin(glm::vec3 direction, glm::vec2 u) const;
+    float diskArea() const;
+
+  private:
+    enum class Kind : std::uint8_t { Triangle, Point, Spot, Directional, Environment };
+    struct Emitter {
+        glm::vec3 p0{0.0f}, e1{0.0f}, e2{0.0f};  ///< triangle p0, p0+e1, p0+e2, or the point
+        glm::vec3 normal{0.0f};   ///< a triangle's; a spot's axis; a directional light's direction
+        glm::vec3 emitted{0.0f};  ///< radiance, intensity or (directional) irradiance
+        float area = 0;
+        Kind kind = Kind::Triangle;
+        float cosOuter = -1.0f, spotScale = 0.0f;  ///< spot: spotRamp's parameters
+        /// Directional: 1 - cos of the disk's half-angle (0: a delta), and the factor from
+        /// the irradiance to the estimate of one direction sampled uniformly in that cone.
+        float oneMinusCos = 0.0f, sunScale = 1.0f;
+        bool isPoint() const { return kind != Kind::Triangle && kind != Kind::Environment; }
+    };
+
+    LightSample pointOn(std::size_t emitter, float selection, glm::vec2 uPoint) const;
+
+    std::vector<Emitter> emitters_;
+    Distribution1D distribution_;
+    LightTree tree_;  ///< empty when receivers choose by power
+    std::unordered_map<std::uint64_t, std::uint32_t> triangleToEmitter_;
+    const EnvironmentMap* environment_ = nullptr;  ///< when the scene has a sky
+    std::uint32_t environmentIndex_ = 0;           ///< its emitter
+    glm::vec3 center_{0.0f};                       ///< the scene's bounding sphere
+    float radius_ = 1.0f;
+    bool hasDirectional_ = false;
+};
+
+/// A light sample as the point light that one of `samples` direct-light shadow rays goes to: its
+/// power is the sample's emission over its density and the count, its position lifted off the
+/// light's surface (shadow rays end there).
+Vpl directLightVpl(const LightSample& s, const TraceableScene& scene, int samples);
+
+}  // namespace igi

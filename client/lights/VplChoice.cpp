@@ -1,0 +1,106 @@
+#include "lights/VplChoice.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "math/Color.h"
+#include "math/Float4.h"
+
+namespace igi {
+
+void VplChoice::prepare(const std::vector<Vpl>& vpls, std::uint32_t points, float u) {
+    perPoint = points;
+    offset = u;
+    // The choice reads four lanes at a time, the Lambertian links (LambertianLinks) up to
+    // eight: positions, normals and glossy bits go on to a multiple of eight.
+    const std::size_t padded = (vpls.size() + 3) / 4 * 4, wide = (vpls.size() + 7) / 8 * 8;
+    for (auto* v : {&px, &py, &pz, &nx, &ny, &nz}) v->assign(wide, 0.0f);
+    lum.assign(padded, 0.0f);
+    general.assign(wide / 4, 0);
+    anyGeneral = false;
+    for (std::size_t i = 0; i < vpls.size(); ++i) {
+        const Vpl& v = vpls[i];
+        px[i] = v.position.x, py[i] = v.position.y, pz[i] = v.position.z;
+        nx[i] = v.normal.x, ny[i] = v.normal.y, nz[i] = v.normal.z;
+        lum[i] = std::max(0.0f, luminance(v.power) + luminance(v.glossyPower));
+        if (v.glossy() || v.omni) {
+            general[i / 4] |= std::uint8_t(1u << (i % 4));
+            anyGeneral = true;
+        }
+    }
+}
+
+std::uint32_t VplChoice::choose(glm::vec3 origin, glm::vec3 n, glm::vec3 f, float dmin2,
+                                Pick* out) const {
+    const std::size_t padded = lum.size();
+    // Per VPL: its importance w_i, and the running sums of the w and of the reachable VPLs
+    // up to it (so that the CDF needs no second walk in sequence).
+    thread_local std::vector<float> weight, sumW, sumR;
+    weight.resize(padded), sumW.resize(padded), sumR.resize(padded);
+    const Float4 ox(origin.x), oy(origin.y), oz(origin.z), m2(dmin2), zero(0.0f), one(1.0f);
+    Float4 carryW, carryR;
+    for (std::size_t i = 0; i < padded; i += 4) {
+        const Float4 tx = Float4::load(&px[i]) - ox, ty = Float4::load(&py[i]) - oy,
+                     tz = Float4::load(&pz[i]) - oz;
+        const Float4 d2 = tx * tx + ty * ty + tz * tz;
+        const Float4 cx = Float4(n.x) * tx + Float4(n.y) * ty + Float4(n.z) * tz;
+        const Float4 cf = Float4(f.x) * tx + Float4(f.y) * ty + Float4(f.z) * tz;
+        const Float4 cy = zero - (Float4::load(&nx[i]) * tx + Float4::load(&ny[i]) * ty +
+                                  Float4::load(&nz[i]) * tz);
+        // cos_x cos_y = cx cy / d^2 with the unnormalized direction t.
+        const Float4 w = Float4::load(&lum[i]) * cx * cy / (d2 * max(d2, m2));
+        const Float4 can =
+            greater(cx, zero) & greater(cf, zero) & greater(cy, zero) & greater(w, zero);
+        const Float4 kept = select(can, w, zero);
+        kept.store(&weight[i]);
+        carryW = prefixSum(kept) + carryW;
+        carryR = prefixSum(select(can, one, zero)) + carryR;
+        carryW.store(&sumW[i]), carryR.store(&sumR[i]);
+        carryW = lastLane(carryW), carryR = lastLane(carryR);
+    }
+    const float sum = sumW[padded - 1], reachable = sumR[padded - 1];
+    if (!(sum > 0) || !(reachable > 0) || !std::isfinite(sum)) return 0;
+    // p_i = (1 - s) w_i / sum + s / reachable for the reachable VPLs, 0 for the others, so the
+    // CDF at VPL i is a sumW_i + b sumR_i. Sample j sits at (j + offset) / N: those below a CDF
+    // value c are the j < N c - offset, ceil(N c - offset) of them (clamped to [0, N]), and
+    // VPL i takes those below its CDF less those below the previous VPL's. Four VPLs at a time,
+    // no branch on the data but where a VPL took samples.
+    const float a = (1.0f - kUniformShare) / sum, b = kUniformShare / reachable;
+    const float draws = float(perPoint);
+    const Float4 a4(a), b4(b), draws4(draws), offset4(offset);
+    std::uint32_t picked = 0;
+    float below = 0;  // samples below the previous VPL's CDF
+    for (std::size_t i = 0; i < padded && below < draws; i += 4) {
+        const Float4 cdf = a4 * Float4::load(&sumW[i]) + b4 * Float4::load(&sumR[i]);
+        const Float4 raw = ceilNonNegative(min(max(draws4 * cdf - offset4, zero), draws4));
+        // The running sums rise lane by lane but the fourth, summed as (w0 + w1) + (w2 + w3),
+        // may round an ulp below the third's w0 + (w1 + w2): the counts must not fall (a fall
+        // would hand a sample out twice).
+        const Float4 upTo = max(raw, shiftIn(raw, below));
+        const Float4 times = upTo - shiftIn(upTo, below);
+        const unsigned took = laneBits(greater(times, zero));
+        float t[4];
+        if (took) times.store(t);
+        for (unsigned bits = took; bits; bits &= bits - 1) {
+            const int k = __builtin_ctz(bits);
+            const float p = a * weight[i + k] + b;
+            out[picked++] = {std::uint32_t(i + k), t[k] / (draws * p)};
+        }
+        float last[4];
+        upTo.store(last);
+        below = last[3];
+    }
+    // The CDF may end a rounding error short of 1: the last reachable VPL takes what is left.
+    if (below < draws) {
+        std::size_t last = padded;
+        while (last > 0 && !(weight[last - 1] > 0)) --last;
+        if (last-- == 0) return 0;  // cannot happen: some VPL is reachable
+        const float p = a * weight[last] + b;
+        float times = draws - below;
+        if (picked > 0 && out[picked - 1].index == last) times += out[--picked].scale * draws * p;
+        out[picked++] = {std::uint32_t(last), std::round(times) / (draws * p)};
+    }
+    return picked;
+}
+
+}  // namespace igi

@@ -1,0 +1,188 @@
+#include "lights/VplChoice.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "scene/SceneLoader.h"
+#include "testing/TestScenes.h"
+#include "util/TestPaths.h"
+
+namespace igi {
+namespace {
+
+// VPLs scattered over a room's walls, floor and ceiling, some facing away from the point.
+std::vector<Vpl> scatteredVpls(int count, std::mt19937& random) {
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<Vpl> vpls;
+    for (int i = 0; i < count; ++i) {
+        Vpl v;
+        v.position = {8 * u(random) - 4, 3 * u(random), 6 * u(random) - 3};
+        v.normal = glm::normalize(glm::vec3(u(random) - 0.5f, u(random) - 0.5f, u(random) - 0.5f));
+        v.power = glm::vec3(0.1f + u(random), 0.1f + u(random), 0.1f + u(random)) *
+                  (i % 7 == 0 ? 20.0f : 1.0f);  // a few bright ones
+        vpls.push_back(v);
+    }
+    return vpls;
+}
+
+// What VPL i gives the point (any function that is zero wherever the choice gives zero
+// importance): the clamped Lambertian connection itself.
+float contribution(const Vpl& v, glm::vec3 x, glm::vec3 n, float dmin2) {
+    const glm::vec3 t = v.position - x;
+    const float d2 = glm::dot(t, t), d = std::sqrt(d2);
+    const float cx = glm::dot(n, t) / d, cy = -glm::dot(v.normal, t) / d;
+    if (cx <= 0 || cy <= 0) return 0;
+    return v.power.y * cx * cy / std::max(d2, dmin2);
+}
+
+// Averaged over the offsets of a whole frame's sets, the chosen VPLs' weighted contributions
+// are the sum over all VPLs: the choice steers the estimate without biasing it.
+TEST(VplChoice, ChosenVplsEstimateTheSumOverThePool) {
+    std::mt19937 random(3);
+    const auto vpls = scatteredVpls(144, random);
+    const glm::vec3 x(0.5f, 0.0f, 0.2f), n(0, 1, 0);
+    const float dmin2 = 0.2f * 0.2f;
+    double exact = 0;
+    for (const Vpl& v : vpls) exact += contribution(v, x, n, dmin2);
+    ASSERT_GT(exact, 0);
+    for (std::uint32_t perPoint : {1u, 4u, 18u, 60u}) {
+        const int offsets = 4096;
+        double sum = 0;
+        std::vector<VplChoice::Pick> picks(perPoint);
+        VplChoice choice;
+        for (int k = 0; k < offsets; ++k) {
+            choice.prepare(vpls, perPoint, (float(k) + 0.5f) / float(offsets));
+            const std::uint32_t chosen = choice.choose(x, n, n, dmin2, picks.data());
+            ASSERT_LE(chosen, perPoint);
+            for (std::uint32_t i = 0; i < chosen; ++i) {
+                if (i > 0) {
+                    ASSERT_LT(picks[i - 1].index, picks[i].index);
+                }
+                const float c = contribution(vpls[picks[i].index], x, n, dmin2);
+                ASSERT_GT(c, 0) << "a VPL that cannot light the point was chosen";
+                sum += picks[i].scale * c;
+            }
+        }
+        EXPECT_NEAR(sum / offsets / exact, 1.0, 1e-3) << perPoint << " per point";
+    }
+}
+
+// Whatever the weights (many orders of magnitude apart, many zero, pools of any size), a point
+// gets at most perPoint picks in increasing order, each with a finite positive weight, and
+// nothing is written past them.
+TEST(VplChoice, PicksStayWithinTheirCountForAnyWeights) {
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int trial = 0; trial < 2000; ++trial) {
+        auto vpls = scatteredVpls(1 + int(u(random) * 200), random);
+        for (Vpl& v : vpls) v.power *= std::pow(10.0f, 12 * u(random) - 6);
+        for (Vpl& v : vpls)
+            if (u(random) < 0.3f) v.power = glm::vec3(0.0f);
+        const std::uint32_t perPoint = 1 + std::uint32_t(u(random) * 40);
+        VplChoice choice;
+        choice.prepare(vpls, perPoint, u(random) * 0.999999f);
+        const VplChoice::Pick sentinel{0xDEADBEEFu, -7.0f};
+        std::vector<VplChoice::Pick> picks(perPoint + 1, sentinel);
+        const glm::vec3 x(8 * u(random) - 4, 3 * u(random), 6 * u(random) - 3);
+        const glm::vec3 n =
+            glm::normalize(glm::vec3(u(random) - 0.5f, u(random), u(random) - 0.5f));
+        const std::uint32_t chosen = choice.choose(x, n, n, 0.01f, picks.data());
+        ASSERT_LE(chosen, perPoint) << "trial " << trial;
+        EXPECT_EQ(picks[perPoint].index, sentinel.index) << "trial " << trial;
+        for (std::uint32_t i = 0; i < chosen; ++i) {
+            if (i > 0) {
+                ASSERT_LT(picks[i - 1].index, picks[i].index) << "trial " << trial;
+            }
+            ASSERT_LT(picks[i].index, vpls.size());
+            ASSERT_TRUE(std::isfinite(picks[i].scale) && picks[i].scale > 0) << "trial " << trial;
+        }
+    }
+}
+
+// The importance follows the contribution: a point next to one bright VPL spends most of its
+// choices on it, and one shadow ray carries them all.
+TEST(VplChoice, ANearBrightVplIsChosenOnceForManySamples) {
+    std::mt19937 random(5);
+    auto vpls = scatteredVpls(72, random);
+    const glm::vec3 x(0.0f, 0.0f, 0.0f), n(0, 1, 0);
+    vpls[40].position = {0.0f, 0.3f, 0.0f};
+    vpls[40].normal = {0, -1, 0};
+    vpls[40].power = glm::vec3(30.0f);
+    VplChoice choice;
+    choice.prepare(vpls, 18, 0.37f);
+    std::vector<VplChoice::Pick> picks(18);
+    const std::uint32_t chosen = choice.choose(x, n, n, 0.01f, picks.data());
+    ASSERT_GT(chosen, 0u);
+    int found = -1;
+    for (std::uint32_t i = 0; i < chosen; ++i)
+        if (picks[i].index == 40) found = int(i);
+    ASSERT_GE(found, 0);
+    EXPECT_LT(chosen, 10u) << "the near VPL takes most of the 18 samples in one ray";
+}
+
+// Nothing can light a point that every VPL faces away from, or that faces away from them.
+TEST(VplChoice, APointNoVplCanLightChoosesNone) {
+    std::mt19937 random(9);
+    auto vpls = scatteredVpls(20, random);
+    for (Vpl& v : vpls) v.position.y = 2.0f, v.normal = {0, 1, 0};  // all above, facing up
+    VplChoice choice;
+    choice.prepare(vpls, 8, 0.5f);
+    std::vector<VplChoice::Pick> picks(8);
+    EXPECT_EQ(choice.choose({0, 0, 0}, {0, 1, 0}, {0, 1, 0}, 0.01f, picks.data()), 0u);
+}
+
+// Rendered: the interior (96 small lights, every point choosing 18 of a pool of 144 VPLs per set)
+// converges to the image of every point connecting to all its set's VPLs.
+Scene withVpls(const char* file, VplSampling sampling, int width, int height) {
+    SceneLoadOptions options;
+    options.allowOutsidePaths = true;
+    Scene scene = loadSceneFile(testing::sourceDir() / file, options);
+    scene.image.width = width;
+    scene.image.height = height;
+    scene.render.vplSampling = sampling;
+    return scene;
+}
+
+TEST(VplChoice, InteriorConvergesToTheImageOfEveryVpl) {
+    const char* file = "scenes/interior/diffuse.json";
+    testing::InProcessRenderer importance(withVpls(file, VplSampling::Importance, 64, 48)),
+        all(withVpls(file, VplSampling::All, 64, 48));
+    const glm::dvec3 ma = testing::meanOf(importance.render(96)),
+                     mb = testing::meanOf(all.render(96));
+    EXPECT_EQ(importance.nonFiniteValues(), 0u);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(ma[c] / mb[c], 1.0, 0.01) << c;
+}
+
+double relativeMse(const Image& a, const Image& reference) {
+    double sum = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        const double r = luminance(reference.pixels[i]), d = luminance(a.pixels[i]) - r;
+        sum += d * d / (r * r + 1e-2);
+    }
+    return sum / double(a.pixels.size());
+}
+
+// In the Sponza atrium lit by 120 lights under the arcades (scenes/sponza/arcades.json), most of
+// a set's VPLs are far from any given point: one frame choosing by importance is much closer to
+// the converged image than one frame connecting every point to its set's 18 VPLs.
+TEST(VplChoice, OneFrameAmongManyLightsIsCloserToTheConvergedImage) {
+    const char* file = "scenes/sponza/arcades.json";
+    if (!std::filesystem::exists(testing::sourceDir() / "../shared/scenes/sponza-dabrovic"))
+        GTEST_SKIP() << "../shared/scenes is not here";
+    testing::InProcessRenderer importance(withVpls(file, VplSampling::Importance, 80, 60)),
+        all(withVpls(file, VplSampling::All, 80, 60));
+    const Image converged = importance.render(128, 1000);
+    // One frame after the first (the converging estimator), each against the converged image.
+    const double errorImportance = relativeMse(importance.render(1, 7, 1), converged);
+    const double errorAll = relativeMse(all.render(1, 7, 1), converged);
+    std::printf("one frame's relMSE: importance %.4f, all %.4f\n", errorImportance, errorAll);
+    EXPECT_LT(1.5 * errorImportance, errorAll);
+}
+
+}  // namespace
+}  // namespace igi

@@ -1,0 +1,96 @@
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <utility>
+
+#include <glm/vec3.hpp>
+
+#include "math/Color.h"
+#include "shading/Scattering.h"
+#include "tracing/TraceableScene.h"
+
+namespace igi {
+
+/// Radiance an emitter sends toward wo from a hit (zero on its back side or if it is no emitter).
+glm::vec3 emittedToward(const SurfacePoint& hit, glm::vec3 wo);
+
+/// Where a chain of mirror and glass bounces ended: a non-delta surface point, the throughput
+/// of the chain up to it (the choice of its non-delta part included), and the chain's length.
+struct ChainEnd {
+    SurfacePoint hit;
+    Lobes lobes;
+    glm::vec3 throughput{0.0f};
+    float pathLength = 0;
+};
+
+/// The probability with which chooseLobe (without roulette) takes one of the non-delta lobes.
+inline float nonDeltaProbability(const Lobes& l) {
+    const float nonDelta = lobeWeight(l, Lobe::Diffuse) + lobeWeight(l, Lobe::Glossy);
+    const float total =
+        nonDelta + lobeWeight(l, Lobe::Reflection) + lobeWeight(l, Lobe::Transmission);
+    return total > 0 ? nonDelta / total : 0.0f;
+}
+
+/// Follows a path through mirrors and glass from `firstHit`, where a ray along `direction` has
+/// already landed: at every vertex one lobe is chosen (one number from `next()`), and the path
+/// ends at the first vertex whose non-delta part is chosen. Emitters met on the way add
+/// throughput * Le to `emitted`, and so does the sky where the path leaves the scene. Nothing
+/// when the path leaves the scene, is absorbed, or has
+/// not ended after `maxHits` intersections (the first hit counts as one).
+template <typename Next>
+std::optional<ChainEnd> followDeltaChainFrom(const TraceableScene& scene,
+                                             const SurfacePoint& firstHit, glm::vec3 direction,
+                                             glm::vec3 throughput, float pathLength, int maxHits,
+                                             Next&& next, glm::vec3& emitted,
+                                             RayCounters& counters) {
+    constexpr float kInfinity = std::numeric_limits<float>::infinity();
+    ChainEnd end;
+    end.hit = firstHit;
+    for (int hits = 1;; ++hits) {
+        pathLength += end.hit.distance;
+        const glm::vec3 wo = -direction;
+        emitted += throughput * emittedToward(end.hit, wo);
+        end.lobes = lobesAt(end.hit, wo);
+        Lobe lobe;
+        float probability = 0;
+        if (!chooseLobe(end.lobes, next(), lobe, probability)) return std::nullopt;
+        if (!isDelta(lobe)) {
+            end.throughput = throughput / nonDeltaProbability(end.lobes);
+            end.pathLength = pathLength;
+            return end;
+        }
+        if (hits >= maxHits) return std::nullopt;
+        glm::vec3 weight;
+        const float u0 = next(), u1 = next();
+        if (!sampleLobe(end.lobes, lobe, {u0, u1}, direction, weight)) return std::nullopt;
+        throughput *= weight / probability;
+        if (isBlack(throughput)) return std::nullopt;
+        const glm::vec3 origin =
+            scene.offsetOrigin(end.hit.position, end.lobes.faceNormal, direction);
+        if (!scene.intersect(origin, direction, kInfinity, end.hit, counters)) {
+            emitted += throughput * scene.skyRadiance(direction);  // seen through the mirrors
+            return std::nullopt;
+        }
+    }
+}
+
+/// followDeltaChainFrom where the ray from `origin` along `direction` lands (nothing if it
+/// leaves the scene, or if maxHits < 1).
+template <typename Next>
+std::optional<ChainEnd> followDeltaChain(const TraceableScene& scene, glm::vec3 origin,
+                                         glm::vec3 direction, glm::vec3 throughput,
+                                         float pathLength, int maxHits, Next&& next,
+                                         glm::vec3& emitted, RayCounters& counters) {
+    SurfacePoint first;
+    if (maxHits < 1) return std::nullopt;
+    if (!scene.intersect(origin, direction, std::numeric_limits<float>::infinity(), first,
+                         counters)) {
+        emitted += throughput * scene.skyRadiance(direction);
+        return std::nullopt;
+    }
+    return followDeltaChainFrom(scene, first, direction, throughput, pathLength, maxHits,
+                                std::forward<Next>(next), emitted, counters);
+}
+
+}  // namespace igi

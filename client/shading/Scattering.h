@@ -1,0 +1,60 @@
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "materials/SurfaceBrdf.h"
+#include "tracing/SurfacePoint.h"
+
+namespace igi {
+
+/// The BSDF components of a material at a surface point, seen from direction wo (unit, pointing
+/// away from the surface): two non-delta lobes that are evaluated for any pair of directions
+/// (Lambertian and a normalized Phong lobe: together `brdf`) and two delta lobes that only
+/// sampling can follow (a mirror, or the Fresnel reflection of glass; glass's refraction).
+/// Eye paths evaluate the non-delta lobes at their end point and follow the delta ones; light
+/// paths, photons and the path tracer choose one lobe at random.
+struct Lobes {
+    SurfaceBrdf brdf;              ///< the non-delta part, oriented to wo's side
+    glm::vec3 reflection{0.0f};    ///< delta: mirror Ks, or the Fresnel reflectance of glass
+    glm::vec3 transmission{0.0f};  ///< delta: glass, (1 - F) times its transmittance
+    glm::vec3 normal{0.0f};        ///< shading normal on wo's side
+    glm::vec3 faceNormal{0.0f};    ///< geometric normal on wo's side, for ray offsets
+    glm::vec3 wo{0.0f};
+    glm::vec3 mirrorDirection{0.0f};  ///< wo reflected about the shading normal
+    glm::vec3 refractDirection{0.0f};
+
+    bool hasNonDelta() const { return !brdf.empty(); }
+    bool hasDelta() const;
+};
+
+Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo);
+
+enum class Lobe { Diffuse, Glossy, Reflection, Transmission };
+
+/// The lobe's share of the light: its mean albedo (for glossy, Ks).
+float lobeWeight(const Lobes& lobes, Lobe lobe);
+
+/// Picks one lobe with probability proportional to its weight; false if all are zero. With
+/// `roulette`, the probabilities are the lobes' largest channels when they sum to less than
+/// one, and the rest is absorption (false): Russian roulette by albedo, under which no
+/// channel of a surviving path's throughput grows.
+bool chooseLobe(const Lobes& lobes, float u, Lobe& lobe, float& probability, bool roulette = false);
+
+/// Picks one of the delta lobes only (mirror or glass), as chooseLobe; false if there is none.
+bool chooseDeltaLobe(const Lobes& lobes, float u, Lobe& lobe, float& probability,
+                     bool roulette = false);
+
+/// Samples a continuation in one lobe: the direction and its weight (the lobe's BSDF times
+/// cosine over the lobe's own pdf; the lobe's choice is the caller's). Diffuse and glossy use
+/// u; mirrors and glass ignore it. False when the direction goes through the surface (a
+/// shading-normal artefact, or a Phong direction below the horizon).
+bool sampleLobe(const Lobes& lobes, Lobe lobe, glm::vec2 u, glm::vec3& direction,
+                glm::vec3& weight);
+
+/// Whether a lobe is a delta lobe (mirror or glass).
+inline bool isDelta(Lobe lobe) {
+    return lobe == Lobe::Reflection || lobe == Lobe::Transmission;
+}
+
+}  // namespace igi
