@@ -17,10 +17,10 @@ static_assert(sizeof(PunctualLight) == sizeof(std::string) + 56,
               "PunctualLight changed: update ChangeCodec.cpp");
 static_assert(sizeof(QuadLight) == sizeof(std::string) + 56,
               "QuadLight changed: update ChangeCodec.cpp");
-// Not carried: textures, the normal map's scale, coverage (alphaMode, alpha, alphaCutoff,
-// alphaTexture) and the textures' uv transforms: applyChanges keeps the receiver's
-// (docs/PROTOCOL.md).
-static_assert(sizeof(Material) == sizeof(std::string) + 216,
+// Not carried: textures (emissive and bump maps too), the normal map's scale, the bump map's,
+// coverage (alphaMode, alpha, alphaCutoff, alphaTexture) and the textures' uv transforms:
+// applyChanges keeps the receiver's (docs/PROTOCOL.md).
+static_assert(sizeof(Material) == sizeof(std::string) + 256,
               "Material changed: update ChangeCodec.cpp");
 static_assert(std::variant_size_v<SceneChange> == 5,
               "a new kind of SceneChange needs a tag in ChangeCodec.cpp");

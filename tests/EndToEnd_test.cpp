@@ -206,6 +206,120 @@ TEST(EndToEnd, ThreeClientsRenderAlphaBlendModeTestExactlyAsOneDoes) {
     fs::remove_all(dir);
 }
 
+// The files of a scene with an emissive-textured glTF screen (a bright and a dark half) whose
+// second primitive has vertex colours (COLOR_0, normalized bytes), over a floor with an MTL
+// height map (bump -bm): the issue 34 features in one scene, written into `dir`.
+void writeTexturedScene(const fs::path& dir) {
+    auto ppm = [](int w, int h, const std::vector<unsigned char>& rgb) {
+        std::string s = "P6\n" + std::to_string(w) + " " + std::to_string(h) + "\n255\n";
+        s.append(rgb.begin(), rgb.end());
+        return s;
+    };
+    std::vector<unsigned char> heights;
+    for (int i = 0; i < 16 * 16; ++i) {
+        const unsigned char v = (i % 16 / 4 + i / 16 / 4) % 2 ? 200 : 40;  // 4 x 4 texel checks
+        heights.insert(heights.end(), {v, v, v});
+    }
+    std::ofstream(dir / "h.ppm", std::ios::binary) << ppm(16, 16, heights);
+    std::ofstream(dir / "e.ppm", std::ios::binary)
+        << ppm(4, 1, {255, 255, 255, 255, 255, 255, 0, 0, 0, 0, 0, 0});
+    std::ofstream(dir / "floor.mtl") << "newmtl stone\nKd 0.7 0.7 0.7\nbump -bm 4 h.ppm\n";
+    std::ofstream(dir / "floor.obj")
+        << "mtllib floor.mtl\nv -3 0 -3\nv -3 0 3\nv 3 0 3\nv 3 0 -3\n"
+           "vt 0 0\nvt 0 2\nvt 2 2\nvt 2 0\nusemtl stone\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+    // Screen: y = 1.5, facing down; panel: the back wall z = -1.5, facing +z.
+    const std::vector<float> positions = {-1, 1.5f,  -1,   1, 1.5f,  -1, 1,     1.5f,
+                                          1,  -1,    1.5f, 1, -2,    0,  -1.5f, 2,
+                                          0,  -1.5f, 2,    2, -1.5f, -2, 2,     -1.5f};
+    const std::vector<float> uvs = {0, 0, 1, 0, 1, 1, 0, 1, 0, 0, 1, 0, 1, 1, 0, 1};
+    const std::vector<unsigned char> colours = {255, 40, 40,  255, 40,  40, 255, 255,
+                                                40,  40, 255, 255, 255, 40, 40,  255};
+    const std::vector<std::uint16_t> indices = {0, 1, 2, 0, 2, 3, 0, 1, 2, 0, 2, 3};
+    std::string bin(reinterpret_cast<const char*>(positions.data()), positions.size() * 4);
+    bin.append(reinterpret_cast<const char*>(uvs.data()), uvs.size() * 4);
+    bin.append(reinterpret_cast<const char*>(colours.data()), colours.size());
+    bin.append(reinterpret_cast<const char*>(indices.data()), indices.size() * 2);
+    std::ofstream(dir / "screen.bin", std::ios::binary) << bin;
+    using nlohmann::json;
+    const json gltf = {
+        {"asset", {{"version", "2.0"}}},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"nodes", {{{"mesh", 0}}}},
+        {"meshes",
+         {{{"primitives",
+            {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}},
+              {"indices", 3},
+              {"material", 0}},
+             {{"attributes", {{"POSITION", 4}, {"TEXCOORD_0", 5}, {"COLOR_0", 2}}},
+              {"indices", 6},
+              {"material", 1}}}}}}},
+        {"materials",
+         {{{"name", "screen"},
+           {"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 0, 1}}}},
+           {"emissiveFactor", {1, 1, 1}},
+           {"emissiveTexture", {{"index", 0}}},
+           {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 6}}}}}},
+          {{"name", "panel"}, {"pbrMetallicRoughness", {{"metallicFactor", 0}}}}}},
+        {"extensionsUsed", {"KHR_materials_emissive_strength"}},
+        {"textures", {{{"source", 0}}}},
+        {"images", {{{"uri", "e.ppm"}}}},
+        {"buffers", {{{"uri", "screen.bin"}, {"byteLength", bin.size()}}}},
+        {"bufferViews",
+         {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+          {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 32}},
+          {{"buffer", 0}, {"byteOffset", 160}, {"byteLength", 16}},
+          {{"buffer", 0}, {"byteOffset", 176}, {"byteLength", 12}},
+          {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 48}},
+          {{"buffer", 0}, {"byteOffset", 128}, {"byteLength", 32}},
+          {{"buffer", 0}, {"byteOffset", 188}, {"byteLength", 12}}}},
+        {"accessors",
+         {{{"bufferView", 0},
+           {"componentType", 5126},
+           {"count", 4},
+           {"type", "VEC3"},
+           {"min", {-1, 1.5, -1}},
+           {"max", {1, 1.5, 1}}},
+          {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+          {{"bufferView", 2},
+           {"componentType", 5121},
+           {"normalized", true},
+           {"count", 4},
+           {"type", "VEC4"}},
+          {{"bufferView", 3}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}},
+          {{"bufferView", 4},
+           {"componentType", 5126},
+           {"count", 4},
+           {"type", "VEC3"},
+           {"min", {-2, 0, -1.5}},
+           {"max", {2, 2, -1.5}}},
+          {{"bufferView", 5}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+          {{"bufferView", 6}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}}};
+    std::ofstream(dir / "screen.gltf") << gltf.dump();
+    std::ofstream(dir / "scene.json")
+        << R"({"meshes": [{"file": "floor.obj"}, {"file": "screen.gltf"}],
+               "camera": {"position": [0, 0.8, 4], "look_at": [0, 0.6, 0], "fov_y": 50}})";
+}
+
+// Emissive textures (light sampling by the texels' power, light paths from the texels), vertex
+// colours and bump maps are functions of the hit and the light sample alone: the image does not
+// depend on which client rendered which tile.
+TEST(EndToEnd, ThreeClientsRenderEmissiveTexturesColoursAndBumpsExactlyAsOneDoes) {
+    const fs::path dir = scratchDir("textured");
+    writeTexturedScene(dir);
+    Image a;
+    renderWithThreeAndOneClients(dir, (dir / "scene.json").string(), 96, 72, 3, a);
+    if (HasFatalFailure()) return;
+    // The screen's left half (world -x) is bright: the floor is lit more on the left.
+    double left = 0, right = 0;
+    for (int y = 44; y < 56; ++y)
+        for (int x = 10; x < 40; ++x) {
+            left += luminance(a.at(x, y));
+            right += luminance(a.at(95 - x, y));
+        }
+    EXPECT_GT(left, 1.3 * right);
+    fs::remove_all(dir);
+}
+
 TEST(EndToEnd, ABadSceneFileIsAClearErrorAndANonZeroExit) {
     const fs::path dir = scratchDir("bad");
     std::ofstream(dir / "bad.json")

@@ -23,7 +23,7 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 glm::vec3 emittedToward(const SurfacePoint& hit, glm::vec3 wo) {
     if (!hit.material->isEmissive() || glm::dot(wo, hit.geometricNormal) <= 0)
         return glm::vec3(0.0f);
-    return hit.material->emission;
+    return hit.material->emission * hit.emissionTexel;  // exactly `emission` without a texture
 }
 
 IgiIntegrator::IgiIntegrator(const TraceableScene& scene, const Lights& lights,

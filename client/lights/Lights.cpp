@@ -34,6 +34,24 @@ Corners cornersOf(const TraceableScene::WorldTriangle& t) {
     return std::min({key(0), key(1), key(2)});
 }
 
+EmissiveTexture emissiveTextureOf(const TraceableScene& traceable,
+                                  const TraceableScene::WorldTriangle& t, const Material& m) {
+    return EmissiveTexture(traceable.textures()[m.emissionTexture], m.emissionUv,
+                           traceable.triangleUvs(t.mesh, t.triangle));
+}
+
+// The luminance a textured triangle's power is chosen by (emittedLuminance); `imageMaximum`
+// keeps each texture's brightest texel, found once.
+float texturedLuminance(const EmissiveTexture& texture, const Material& m,
+                        const std::vector<Texture>& textures, std::map<int, float>& imageMaximum) {
+    auto brightest = imageMaximum.find(m.emissionTexture);
+    if (brightest == imageMaximum.end())
+        brightest =
+            imageMaximum.emplace(m.emissionTexture, maxTexelLuminance(textures[m.emissionTexture]))
+                .first;
+    return emittedLuminance(texture, m.emission, brightest->second);
+}
+
 }  // namespace
 
 Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>& punctualLights,
@@ -43,6 +61,7 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
     // light, or sampling it would count its light twice. The copy maps to the same emitter so that
     // a path that hits the copy finds the density of the light it is.
     std::map<Corners, std::uint32_t> emitterAt;
+    std::map<int, float> imageMaximum;  // per emissive texture, found once
     for (const auto& t : traceable.emissiveTriangles()) {
         Emitter e;
         e.p0 = t.p0;
@@ -51,6 +70,14 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
         const glm::vec3 c = glm::cross(e.e1, e.e2);
         const float len = glm::length(c);
         if (!(len > 0) || !std::isfinite(len)) continue;  // a degenerate triangle emits nothing
+        const Material& material = traceable.materials()[t.material];
+        e.emitted = material.emission;
+        float emittedLum = luminance(e.emitted);
+        if (material.emissionTexture >= 0) {
+            e.texture = emissiveTextureOf(traceable, t, material);
+            emittedLum = texturedLuminance(e.texture, material, traceable.textures(), imageMaximum);
+            if (!(emittedLum > 0)) continue;  // black wherever it is: it emits nothing
+        }
         const auto [it, fresh] =
             emitterAt.try_emplace(cornersOf(t), std::uint32_t(emitters_.size()));
         if (!fresh) {
@@ -59,10 +86,9 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
         }
         e.normal = c / len;
         e.area = 0.5f * len;
-        e.emitted = traceable.materials()[t.material].emission;
         triangleToEmitter_[triangleKey(t.mesh, t.triangle)] = std::uint32_t(emitters_.size());
         emitters_.push_back(e);
-        power.push_back(kPi * e.area * luminance(e.emitted));  // one-sided Lambertian emitter
+        power.push_back(kPi * e.area * emittedLum);  // one-sided Lambertian emitter
     }
     center_ = traceable.center();
     radius_ = 0.5f * traceable.diagonal();
@@ -187,6 +213,8 @@ LightSample Lights::pointOn(std::size_t i, float select, glm::vec2 uPoint) const
         const glm::vec2 b = squareToUniformTriangle(uPoint);
         s.position = e.p0 + b.x * e.e1 + b.y * e.e2;
         s.normal = e.normal;
+        // Uniform in area with the texel's radiance: the density stays select / area.
+        if (e.texture.present()) s.emitted = e.emitted * e.texture.at(b);
         s.pdf = select / e.area;
         return s;
     }

@@ -7,6 +7,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "lights/EmissiveTexture.h"
 #include "lights/LightTree.h"
 #include "lights/Vpl.h"
 #include "render/RenderSettings.h"
@@ -49,7 +50,8 @@ struct LightSample {
 constexpr float kSunDistance = 1e5f;
 
 /// Every light source of a scene: emissive triangles (from Ke materials and quad lights; zero-area
-/// ones skipped, a face listed twice counted once) and point lights. Light paths leave them by
+/// ones and those whose emissive texture is black there skipped, a face listed twice counted
+/// once) and point lights. Light paths leave them by
 /// emitted power; a point that receives light chooses them either by power too or, with many
 /// lights, by what each could give it there (a LightTree), so that its few samples go to the
 /// lights that matter to it.
@@ -101,6 +103,9 @@ class Lights {
         glm::vec3 normal{0.0f};   ///< a triangle's; a spot's axis; a directional light's direction
         glm::vec3 emitted{0.0f};  ///< radiance, intensity or (directional) irradiance
         float area = 0;
+        /// A triangle's emissive texture: `emitted` (the material's emission) times its texel
+        /// at the sampled point. Chosen by the texture's mean, the point uniform in area.
+        EmissiveTexture texture;
         Kind kind = Kind::Triangle;
         float cosOuter = -1.0f, spotScale = 0.0f;  ///< spot: spotRamp's parameters
         /// Directional: 1 - cos of the disk's half-angle (0: a delta), and the factor from

@@ -55,10 +55,9 @@ Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
     // surface: every GGX value and sample about it would be zero (black facets), the mirror
     // direction below the surface. The fix is Cycles' ensure_valid_reflection: the normal bent
     // toward the geometric one just enough that wo's mirror direction is above the surface
-    // (NormalMap.h). Only for normal-mapped materials, so that scenes without normal maps (whose
-    // interpolated normals may do the same) render exactly as before.
-    if (m.normalTexture >= 0)
-        l.normal = normalmap::ensureValidReflection(l.faceNormal, wo, l.normal);
+    // (NormalMap.h). Only for normal- and bump-mapped materials, so that scenes without them
+    // (whose interpolated normals may do the same) render exactly as before.
+    if (m.perturbsNormal()) l.normal = normalmap::ensureValidReflection(l.faceNormal, wo, l.normal);
     l.wo = wo;
     l.mirrorDirection = reflect(wo, l.normal);
     if (m.glass) {

@@ -19,6 +19,9 @@ struct SurfacePoint {
     glm::vec3 albedo{0.0f};  ///< Lambertian albedo: Kd times the texture (GGX: the base colour)
     float roughness = 1.0f;  ///< Reflection::Ggx: the factor times the texture's green
     float metallic = 0.0f;   ///< Reflection::Ggx: the factor times the texture's blue
+    /// The material's emissive texture at the hit (1 without one): the radiance emitted is
+    /// material->emission times this (emittedToward).
+    glm::vec3 emissionTexel{1.0f};
     const Material* material = nullptr;
     std::uint32_t mesh = 0;
     std::uint32_t triangle = 0;

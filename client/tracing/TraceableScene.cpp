@@ -12,6 +12,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include "materials/BumpMap.h"
 #include "materials/NormalMap.h"
 #include "math/Color.h"
 
@@ -355,7 +356,13 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
             hit.metallic *= t.z;
         }
     }
-    if (hit.material->normalTexture >= 0 && !mesh.uvs.empty())
+    if (!mesh.colors.empty())  // glTF COLOR_0: base colour x texture x vertex colour
+        hit.albedo *= w * mesh.colors[t.x] + u * mesh.colors[t.y] + v * mesh.colors[t.z];
+    hit.emissionTexel =
+        hit.material->emissionTexture >= 0
+            ? (*textures_)[hit.material->emissionTexture].sample(hit.material->emissionUv(hit.uv))
+            : glm::vec3(1.0f);
+    if (hit.material->perturbsNormal() && !mesh.uvs.empty())
         applyNormalMap(m, t, u, v, interpolated, hit);
 }
 
@@ -392,9 +399,13 @@ void TraceableScene::applyNormalMap(const MeshData& m, glm::uvec3 t, float u, fl
     }
     if (!framed) return;  // degenerate: the interpolated normal
     const Material& mat = *hit.material;
-    const glm::vec3 texel = (*textures_)[mat.normalTexture].sample(mat.normalUv(hit.uv));
-    glm::vec3 mapped =
-        normalmap::perturb(n, frame, normalmap::tangentSpaceNormal(texel, mat.normalScale));
+    // A normal map's texel, or a height map's slope (MTL bump; MTL has no uv transforms).
+    const glm::vec3 local =
+        mat.normalTexture >= 0
+            ? normalmap::tangentSpaceNormal(
+                  (*textures_)[mat.normalTexture].sample(mat.normalUv(hit.uv)), mat.normalScale)
+            : bumpmap::tangentSpaceNormal((*textures_)[mat.bumpTexture], hit.uv, mat.bumpScale);
+    glm::vec3 mapped = normalmap::perturb(n, frame, local);
     const glm::vec3 ng = hit.geometricNormal;
     // Turned to ng's side with the interpolated normal; a map that tilts it below the
     // geometric surface is mirrored in that surface (the view's own check is in lobesAt).
@@ -403,6 +414,14 @@ void TraceableScene::applyNormalMap(const MeshData& m, glm::uvec3 t, float u, fl
     if (below < 0) mapped -= 2.0f * below * ng;
     const float len = glm::length(mapped);
     if (len > 0 && std::isfinite(len)) hit.shadingNormal = mapped / len;
+}
+
+std::array<glm::vec2, 3> TraceableScene::triangleUvs(std::uint32_t mesh,
+                                                     std::uint32_t triangle) const {
+    const Mesh& m = *meshes_[mesh].mesh;
+    if (m.uvs.empty()) return {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(0, 1)};
+    const glm::uvec3 t = m.triangles[triangle];
+    return {m.uvs[t.x], m.uvs[t.y], m.uvs[t.z]};
 }
 
 std::vector<TraceableScene::WorldTriangle> TraceableScene::trianglesWhere(
@@ -450,6 +469,10 @@ void TraceableScene::computeMeanAlbedo(const std::vector<Texture>& textures) {
             if (mat.glass) continue;
             glm::vec3 albedo = mat.diffuse;
             if (mat.diffuseTexture >= 0) albedo *= textures[mat.diffuseTexture].average;
+            if (!mesh.colors.empty()) {
+                const glm::uvec3 c = mesh.triangles[t];
+                albedo *= (mesh.colors[c.x] + mesh.colors[c.y] + mesh.colors[c.z]) / 3.0f;
+            }
             if (isBlack(albedo)) continue;
             const WorldTriangle w = worldTriangle(mi, t);
             const double a = 0.5 * glm::length(glm::cross(w.p1 - w.p0, w.p2 - w.p0));

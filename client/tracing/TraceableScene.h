@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -89,6 +90,9 @@ class TraceableScene {
     std::vector<WorldTriangle> emissiveTriangles() const;
     /// Every triangle whose material is a mirror or glass.
     std::vector<WorldTriangle> specularTriangles() const;
+    /// A triangle's uvs at its three corners, as a hit interpolates them (its barycentric
+    /// corners (0, 0), (1, 0), (0, 1) when the mesh has none).
+    std::array<glm::vec2, 3> triangleUvs(std::uint32_t mesh, std::uint32_t triangle) const;
 
     const std::vector<Material>& materials() const { return materials_; }
     /// The scene's decoded textures (Material's texture indices point here).
@@ -153,7 +157,7 @@ class TraceableScene {
     /// instanced) at barycentrics (u, v), distance t.
     void fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, std::uint32_t prim, float u,
                           float v, float t, SurfacePoint& hit) const;
-    /// Replaces hit.shadingNormal by the normal map's (the material has one, the mesh uvs);
+    /// Replaces hit.shadingNormal by the normal or bump map's (the material has one, the mesh uvs);
     /// `n` is the unit interpolated normal (or the face's) before it was turned to ng's side.
     void applyNormalMap(const MeshData& m, glm::uvec3 t, float u, float v, glm::vec3 n,
                         SurfacePoint& hit) const;

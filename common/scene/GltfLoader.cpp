@@ -5,7 +5,6 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
-#include <map>
 #include <optional>
 #include <set>
 
@@ -305,20 +304,15 @@ void checkGltfFeatures(const std::string& path, const tinygltf::Model& model) {
             ignored.insert(
                 "occlusionTexture (ambient occlusion is for rasterizers: a path tracer "
                 "computes it)");
-        if (m.emissiveTexture.index >= 0)
-            ignored.insert("emissiveTexture (emission is its mean colour per material)");
         const auto& pbr = m.pbrMetallicRoughness;
-        // KHR_texture_transform is read for every slot (the emissive texture's mean is over
-        // the whole image); a texCoord other than 0, the extension's or the slot's, is not.
+        // KHR_texture_transform is read for every slot; a texCoord other than 0, the
+        // extension's or the slot's, is not.
         for (const tinygltf::TextureInfo* t :
              {&pbr.baseColorTexture, &pbr.metallicRoughnessTexture, &m.emissiveTexture})
             if (t->index >= 0 && texCoordOf(*t) != 0) ignored.insert("texCoord other than 0");
         if (m.normalTexture.index >= 0 && texCoordOf(m.normalTexture) != 0)
             ignored.insert("texCoord other than 0");
     }
-    for (const tinygltf::Mesh& mesh : model.meshes)
-        for (const tinygltf::Primitive& p : mesh.primitives)
-            if (p.attributes.count("COLOR_0")) ignored.insert("COLOR_0 vertex colours");
     if (!ignored.empty())
         spdlog::warn("{}: material features not modelled, rendered without them: {}", path,
                      joined(ignored));
@@ -351,6 +345,11 @@ class GltfMaterials {
                                  : gm.name;
         const glm::vec3 baseColor = glm::max(vec3Of(pbr.baseColorFactor, glm::vec3(1.0f)), 0.0f);
         m.emission = emission(gm);
+        // Per texel (client/lights/EmissiveTexture.h); without a factor it emits nothing.
+        if (gm.emissiveTexture.index >= 0 && m.isEmissive()) {
+            m.emissionTexture = colourTexture(gm.emissiveTexture.index, "emissiveTexture");
+            m.emissionUv = uvTransformOf(gm.emissiveTexture.extensions);
+        }
         const double transmission =
             extensionNumber(gm.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0);
         if (transmission > 0.5) {
@@ -407,16 +406,12 @@ class GltfMaterials {
         }
     }
 
-    // emissiveFactor x KHR_materials_emissive_strength; an emissive texture scales it by its
-    // mean, since igi's emission is one colour per material.
+    // emissiveFactor x KHR_materials_emissive_strength (the emissive texture multiplies it
+    // per texel where the hit or the light sample is).
     glm::vec3 emission(const tinygltf::Material& gm) {
         const float strength = static_cast<float>(extensionNumber(
             gm.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0));
-        glm::vec3 e = glm::max(vec3Of(gm.emissiveFactor, glm::vec3(0.0f)) * strength, 0.0f);
-        if (gm.emissiveTexture.index >= 0 && (e.x > 0 || e.y > 0 || e.z > 0)) {
-            e *= textureAverage(gm.emissiveTexture.index);
-        }
-        return e;
+        return glm::max(vec3Of(gm.emissiveFactor, glm::vec3(0.0f)) * strength, 0.0f);
     }
 
     int imageOf(int textureIndex, const std::string& what) const {
@@ -448,8 +443,8 @@ class GltfMaterials {
         return {key + extensionForMime(img.mimeType), key};
     }
 
-    int colourTexture(int textureIndex) {
-        const int image = imageOf(textureIndex, "baseColorTexture");
+    int colourTexture(int textureIndex, const std::string& what = "baseColorTexture") {
+        const int image = imageOf(textureIndex, what);
         const auto [name, key] = imageNameAndKey(image);
         const auto& bytes = model_.images[image].image;
         return assets_.textureBytes(key, name, std::string(bytes.begin(), bytes.end()));
@@ -464,22 +459,9 @@ class GltfMaterials {
                                     TextureEncoding::Data);
     }
 
-    glm::vec3 textureAverage(int textureIndex) {
-        const int image = imageOf(textureIndex, "emissiveTexture");
-        auto cached = averages_.find(image);
-        if (cached != averages_.end()) return cached->second;
-        const auto& bytes = model_.images[image].image;
-        // Only its mean is kept: not counted against the scene's texture pixels.
-        const Texture t =
-            decodeTexture(imageNameAndKey(image).first, std::string(bytes.begin(), bytes.end()),
-                          TextureLimits{assets_.limits().maxTexturePixels, nullptr});
-        return averages_[image] = t.average;
-    }
-
     const std::string& path_;
     const tinygltf::Model& model_;
     SceneAssets& assets_;
-    std::map<int, glm::vec3> averages_;
 };
 
 // ---- Accessors ----------------------------------------------------------------------------
@@ -534,6 +516,7 @@ class AccessorReader {
     }
 
     std::size_t count(int index) const { return accessor(index).count; }
+    int type(int index) const { return accessor(index).type; }
 
   private:
     // Where an accessor's elements are in its buffer, checked to lie inside it.
@@ -678,6 +661,7 @@ class GltfFlattener {
                 withNormals_ = withNormals_ || p.attributes.count("NORMAL") > 0;
                 withUvs_ = withUvs_ || p.attributes.count("TEXCOORD_0") > 0;
                 withTangents_ = withTangents_ || p.attributes.count("TANGENT") > 0;
+                withColours_ = withColours_ || p.attributes.count("COLOR_0") > 0;
             }
         }
     }
@@ -820,6 +804,7 @@ class GltfFlattener {
         const int nAcc = nonEmpty(attribute(prim, "NORMAL"));
         const int tAcc = nonEmpty(attribute(prim, "TEXCOORD_0"));
         const int tanAcc = nonEmpty(attribute(prim, "TANGENT"));
+        const int colAcc = nonEmpty(attribute(prim, "COLOR_0"));
         const std::size_t count = accessors_.count(posAccessor);
         // Compared before reading: neither is read when it claims more than POSITION.
         if (nAcc >= 0 && accessors_.count(nAcc) != count)
@@ -828,6 +813,8 @@ class GltfFlattener {
             throw SceneError::atPath(path_, where, "TEXCOORD_0 count differs from POSITION");
         if (tanAcc >= 0 && accessors_.count(tanAcc) != count)
             throw SceneError::atPath(path_, where, "TANGENT count differs from POSITION");
+        if (colAcc >= 0 && accessors_.count(colAcc) != count)
+            throw SceneError::atPath(path_, where, "COLOR_0 count differs from POSITION");
         chargeGeometry(prim, mode, count, nAcc < 0, where);
 
         const std::vector<float> pos = accessors_.floats(posAccessor, TINYGLTF_TYPE_VEC3);
@@ -849,7 +836,8 @@ class GltfFlattener {
         Attributes attr{
             pos, nAcc >= 0 ? accessors_.floats(nAcc, TINYGLTF_TYPE_VEC3) : std::vector<float>(),
             tAcc >= 0 ? accessors_.floats(tAcc, TINYGLTF_TYPE_VEC2) : std::vector<float>(),
-            tanAcc >= 0 ? accessors_.floats(tanAcc, TINYGLTF_TYPE_VEC4) : std::vector<float>()};
+            tanAcc >= 0 ? accessors_.floats(tanAcc, TINYGLTF_TYPE_VEC4) : std::vector<float>(),
+            colAcc >= 0 ? colours(colAcc, prim.material, where) : std::vector<float>()};
         emit(assembleTriangles(mode, idx), attr, world, materialId(prim.material));
     }
 
@@ -873,7 +861,43 @@ class GltfFlattener {
 
     struct Attributes {
         std::vector<float> positions, normals, uvs, tangents;
+        std::vector<float> colours;  ///< RGB, 3 per vertex (COLOR_0's alpha dropped)
     };
+
+    // COLOR_0 as RGB (linear; float, or normalized unsigned byte or short, as the specification
+    // allows), which multiplies the base colour. Its alpha is not read: where the material is
+    // MASK or BLEND and some alpha is below one, one warning per file says so.
+    std::vector<float> colours(int accessor, int material, const std::string& where) {
+        const int type = accessors_.type(accessor);
+        if (type != TINYGLTF_TYPE_VEC3 && type != TINYGLTF_TYPE_VEC4)
+            throw SceneError::atPath(path_, where + "/attributes/COLOR_0",
+                                     "COLOR_0 must be a VEC3 or VEC4 accessor");
+        const std::vector<float> values = accessors_.floats(accessor, type);
+        const std::size_t n = type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+        std::vector<float> rgb;
+        rgb.reserve(values.size() / n * 3);
+        bool translucent = false;
+        for (std::size_t i = 0; i + n <= values.size(); i += n) {
+            for (std::size_t c = 0; c < 3; ++c) {
+                if (!std::isfinite(values[i + c]))
+                    throw SceneError::atPath(path_, where + "/attributes/COLOR_0",
+                                             "COLOR_0 is not finite");
+                rgb.push_back(std::max(values[i + c], 0.0f));
+            }
+            translucent = translucent || (n == 4 && values[i + 3] < 1.0f);
+        }
+        const bool covers = material >= 0 && material < static_cast<int>(model_.materials.size()) &&
+                            model_.materials[material].alphaMode != "OPAQUE" &&
+                            !model_.materials[material].alphaMode.empty();
+        if (translucent && covers && !warnedColourAlpha_) {
+            spdlog::warn(
+                "{}: {}: COLOR_0's alpha is not modelled: coverage is baseColorFactor's "
+                "and the base colour texture's alpha alone",
+                path_, where);
+            warnedColourAlpha_ = true;
+        }
+        return rgb;
+    }
 
     // Appends the triangles, transformed to the file's space. A primitive without normals in a
     // mesh that has them is flat-shaded (glTF's rule): its triangles get vertices of their own,
@@ -900,6 +924,12 @@ class GltfFlattener {
             }
             if (withTangents_)
                 mesh_.tangents.push_back(flat ? glm::vec4(0.0f) : tangent(a, i, m, flip));
+            // A vertex without COLOR_0, in a mesh that has some, is white.
+            if (withColours_)
+                mesh_.colors.push_back(
+                    a.colours.empty()
+                        ? glm::vec3(1.0f)
+                        : glm::vec3(a.colours[3 * i], a.colours[3 * i + 1], a.colours[3 * i + 2]));
             // glTF's v runs down the image, igi's (OBJ's) up.
             if (withUvs_)
                 mesh_.uvs.push_back(a.uvs.empty()
@@ -961,6 +991,8 @@ class GltfFlattener {
     bool withNormals_ = false;
     bool withUvs_ = false;
     bool withTangents_ = false;
+    bool withColours_ = false;
+    bool warnedColourAlpha_ = false;  ///< one warning per file for COLOR_0's alpha
     std::optional<std::uint32_t> defaultId_;
 };
 

@@ -179,5 +179,103 @@ TEST(GltfFeatures, DataTexturesAreNotSrgbDecoded) {
     EXPECT_EQ(data.minimum, data.texels[0]);
 }
 
+// Little-endian bytes of `values`, as a glTF buffer holds them.
+template <typename T>
+std::string bytesOf(const std::vector<T>& values) {
+    return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+// plain.gltf's triangle with COLOR_0 from colours.bin, an accessor of `type` and
+// `componentType` (normalized unless told otherwise).
+Scene gltfWithColours(const std::string& type, int componentType, const std::string& bytes,
+                      bool normalized = true) {
+    return plainGltfWith(
+        [&](nlohmann::json& g) {
+            g["buffers"].push_back({{"uri", "colours.bin"}, {"byteLength", bytes.size()}});
+            g["bufferViews"].push_back(
+                {{"buffer", 1}, {"byteOffset", 0}, {"byteLength", bytes.size()}});
+            nlohmann::json accessor = {
+                {"bufferView", 2}, {"componentType", componentType}, {"count", 3}, {"type", type}};
+            if (componentType != 5126) accessor["normalized"] = normalized;
+            g["accessors"].push_back(accessor);
+            g["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 2;
+        },
+        {{"colours.bin", bytes}});
+}
+
+// COLOR_0 (linear) in the three component types the specification allows, RGB or RGBA: the
+// mesh keeps RGB per vertex, which multiplies the base colour where it is hit.
+TEST(GltfColours, FloatByteAndShortRgbOrRgba) {
+    const Scene f = gltfWithColours(
+        "VEC3", 5126, bytesOf<float>({1.0f, 0.5f, 0.25f, 0.0f, 1.0f, 0.0f, 0.2f, 0.4f, 0.6f}));
+    ASSERT_EQ(f.meshes[0].colors.size(), 3u);
+    expectNear(f.meshes[0].colors[0], {1.0f, 0.5f, 0.25f});
+    expectNear(f.meshes[0].colors[2], {0.2f, 0.4f, 0.6f});
+    const Scene b = gltfWithColours(
+        "VEC4", 5121, bytesOf<std::uint8_t>({255, 0, 51, 255, 0, 255, 0, 128, 102, 102, 102, 255}));
+    ASSERT_EQ(b.meshes[0].colors.size(), 3u);
+    expectNear(b.meshes[0].colors[0], {1.0f, 0.0f, 0.2f});
+    expectNear(b.meshes[0].colors[1], {0.0f, 1.0f, 0.0f});  // the alpha is dropped
+    expectNear(b.meshes[0].colors[2], {0.4f, 0.4f, 0.4f});
+    const Scene u = gltfWithColours(
+        "VEC3", 5123, bytesOf<std::uint16_t>({65535, 0, 0, 0, 32768, 0, 0, 0, 13107}));
+    ASSERT_EQ(u.meshes[0].colors.size(), 3u);
+    expectNear(u.meshes[0].colors[1], {0.0f, 32768.0f / 65535.0f, 0.0f});
+    expectNear(u.meshes[0].colors[2], {0.0f, 0.0f, 0.2f});
+    // Without COLOR_0, no colours: the base colour alone.
+    EXPECT_TRUE(plainGltfWith([](nlohmann::json&) {}).meshes[0].colors.empty());
+}
+
+// An integer COLOR_0 that is not normalized, or a scalar one, is an error naming the accessor.
+TEST(GltfColours, UnnormalizedOrScalarColoursAreErrorsNamingTheAccessor) {
+    const std::string bytes = bytesOf<std::uint8_t>({255, 0, 0, 0, 255, 0, 0, 0, 255});
+    const std::string unnormalized =
+        test::sceneErrorOf([&] { gltfWithColours("VEC3", 5121, bytes, false); });
+    EXPECT_NE(unnormalized.find("/accessors/2"), std::string::npos) << unnormalized;
+    EXPECT_NE(unnormalized.find("normalized"), std::string::npos) << unnormalized;
+    const std::string scalar = test::sceneErrorOf([&] {
+        gltfWithColours("SCALAR", 5126, bytesOf<float>({1, 1, 1}));
+    });
+    EXPECT_NE(scalar.find("COLOR_0 must be a VEC3 or VEC4"), std::string::npos) << scalar;
+    EXPECT_NE(scalar.find("plain.gltf"), std::string::npos) << scalar;
+}
+
+// An emissive texture is kept per texel (sRGB, with its slot's transform): emission is the
+// factor times the strength alone, no longer the texture's mean; no warning names it.
+TEST(GltfEmission, EmissiveTextureIsKeptPerTexel) {
+    test::CapturedLog log;
+    // A 2 x 1 grey PGM: black, then white.
+    const std::string pgm = std::string("P5\n2 1\n255\n") + char(0) + char(255);
+    const Scene scene = plainGltfWith(
+        [](nlohmann::json& g) {
+            g["extensionsUsed"] = {"KHR_materials_emissive_strength", "KHR_texture_transform"};
+            g["materials"] = nlohmann::json::array(
+                {{{"name", "screen"},
+                  {"emissiveFactor", {1.0, 0.5, 0.25}},
+                  {"emissiveTexture",
+                   {{"index", 0},
+                    {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0}}}}}}}},
+                  {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}}}},
+                 {{"name", "unlit"}, {"emissiveTexture", {{"index", 0}}}}});
+            g["textures"] = nlohmann::json::array({{{"source", 0}}});
+            g["images"] = nlohmann::json::array({{{"uri", "e.pgm"}}});
+            g["meshes"][0]["primitives"][0]["material"] = 0;
+        },
+        {{"e.pgm", pgm}});
+    ASSERT_EQ(scene.materials.size(), 2u);
+    const Material& m = scene.materials[0];
+    expectNear(m.emission, {4.0f, 2.0f, 1.0f});  // not times the mean (one half)
+    ASSERT_GE(m.emissionTexture, 0);
+    const Texture& t = scene.textures[m.emissionTexture];
+    ASSERT_EQ(t.width, 2);
+    EXPECT_EQ(t.texels[0], glm::vec3(0.0f));
+    EXPECT_NEAR(t.texels[1].x, 1.0f, 1e-6f);
+    EXPECT_TRUE(m.emissionUv.active);
+    // Without an emissive factor (its default is black) the texture emits nothing.
+    EXPECT_FALSE(scene.materials[1].isEmissive());
+    EXPECT_EQ(scene.materials[1].emissionTexture, -1);
+    EXPECT_EQ(log.text().find("emissiveTexture"), std::string::npos) << log.text();
+}
+
 }  // namespace
 }  // namespace igi

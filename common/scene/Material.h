@@ -23,8 +23,8 @@ enum class Reflection : std::uint8_t {
 };
 
 /// How a material covers its surface: glTF's alphaMode; MTL's `d` and `map_d` are Blend. A
-/// material that can let a ray through anywhere (client/tracing/AlphaCoverage.h, hasCutOuts) is traced
-/// in Embree geometry of its own whose filter functions decide, per hit, whether it counts.
+/// material that can let a ray through anywhere (client/tracing/AlphaCoverage.h, hasCutOuts) is
+/// traced in Embree geometry of its own whose filter functions decide, per hit, whether it counts.
 enum class AlphaMode : std::uint8_t {
     Opaque,  ///< every hit counts; alpha is ignored
     Mask,    ///< a hit counts where alpha >= alphaCutoff
@@ -60,15 +60,27 @@ struct Material {
     bool glass = false;             ///< dielectric: diffuse and specular are ignored
     float ior = 1.5f;               ///< Ni, index of refraction of glass
     glm::vec3 transmittance{1.0f};  ///< tint of light refracted through glass
-    glm::vec3 emission{0.0f};       ///< Ke: radiance emitted on the front (counter-clockwise) side
-    float roughness = 1.0f;         ///< Reflection::Ggx: perceptual roughness in [0, 1]
-    float metallic = 0.0f;          ///< Reflection::Ggx: in [0, 1]
+    /// Ke: radiance emitted on the front (counter-clockwise) side, times `emissionTexture`.
+    glm::vec3 emission{0.0f};
+    /// glTF emissiveTexture (sRGB), or -1: the radiance at a point is `emission` times its
+    /// texel there (bilinear), for what is seen, what light sampling draws and where light
+    /// paths start alike (client/lights/EmissiveTexture.h). Not changed live.
+    int emissionTexture = -1;
+    float roughness = 1.0f;             ///< Reflection::Ggx: perceptual roughness in [0, 1]
+    float metallic = 0.0f;              ///< Reflection::Ggx: in [0, 1]
     int metallicRoughnessTexture = -1;  ///< linear: green scales roughness, blue metallic
     /// A tangent-space normal map (glTF normalTexture, linear, OpenGL convention: green toward
     /// +v), or -1. The shading normal is the frame of the tangent, bitangent and interpolated
-    /// normal applied to (2 texel - 1) with x and y scaled by `normalScale` (client/materials/NormalMap.h).
+    /// normal applied to (2 texel - 1) with x and y scaled by `normalScale`
+    /// (client/materials/NormalMap.h).
     int normalTexture = -1;
     float normalScale = 1.0f;  ///< glTF normalTexture.scale
+    /// A height map (MTL `bump` / `map_bump`, linear, the mean of its channels), or -1: the
+    /// shading normal tilts by its slope in texture space, times `bumpScale` (MTL `-bm`):
+    /// client/materials/BumpMap.h. An RGB map that reads as a normal map becomes normalTexture
+    /// instead (common/scene/BumpMapKind.h).
+    int bumpTexture = -1;
+    float bumpScale = 1.0f;
     /// Coverage: alpha is `alpha` times the texture's (Texture::alpha) at the hit. Read when
     /// the scene loads and never changed live (SceneChange keeps them).
     AlphaMode alphaMode = AlphaMode::Opaque;
@@ -77,11 +89,13 @@ struct Material {
     int alphaTexture = -1;     ///< texture whose Texture::alpha multiplies `alpha`, or -1
     /// Where each texture is looked up (glTF KHR_texture_transform of its slot; the alpha
     /// texture is glTF's base colour texture, with its transform). Not changed live.
-    UvTransform diffuseUv, metallicRoughnessUv, normalUv, alphaUv;
+    UvTransform diffuseUv, metallicRoughnessUv, normalUv, alphaUv, emissionUv;
 
     bool operator==(const Material&) const = default;
 
     bool isEmissive() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
+    /// Whether a normal or bump map changes the shading normal.
+    bool perturbsNormal() const { return normalTexture >= 0 || bumpTexture >= 0; }
     /// Mirrors and glass: surfaces on which no diffuse VPL is stored and at which caustic
     /// photons are aimed.
     bool isSpecular() const {

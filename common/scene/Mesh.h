@@ -24,6 +24,8 @@ struct Mesh {
     /// the bitangent, cross(normal, tangent) * w, which points toward +v (igi's v, up in the
     /// image). Without them, normal maps take the tangent frame from each triangle's uvs.
     std::vector<glm::vec4> tangents;
+    /// Empty, or one per position (glTF COLOR_0, linear RGB): multiplies the base colour.
+    std::vector<glm::vec3> colors;
     std::vector<glm::uvec3> triangles;
     std::vector<std::uint32_t> materialIds;  ///< one per triangle, index into Scene::materials
     Transform transform;

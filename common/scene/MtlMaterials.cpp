@@ -8,6 +8,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "scene/BumpMapKind.h"
 #include "scene/ObjText.h"
 #include "scene/SceneError.h"
 #include "scene/TextureLoader.h"
@@ -60,6 +61,14 @@ void applyIllum(const tinyobj::material_t& mtl, const std::string& where, Materi
             }
             return;
     }
+}
+
+// The statement that named the bump map, for messages: tinyobjloader takes any of the three.
+std::string bumpStatement(const std::string& mtlText, const std::string& material) {
+    const int newmtl = mtlLine(mtlText, material, "newmtl");
+    for (const char* keyword : {"map_bump", "map_Bump", "bump"})
+        if (mtlLine(mtlText, material, keyword) != newmtl) return keyword;
+    return "bump";
 }
 
 std::string slashes(std::string name) {
@@ -222,6 +231,25 @@ Material materialFromMtl(const tinyobj::material_t& mtl, const std::string& mtlP
     if (m.alpha < 1.0f || m.alphaTexture >= 0) m.alphaMode = AlphaMode::Blend;
     if (m.alpha <= 0.0f)
         spdlog::warn("{}: d 0 (or Tr 1) makes the material invisible: rays pass through it", where);
+
+    // bump / map_bump (-bm its scale): a height map, or a normal map where it reads as one.
+    if (!mtl.bump_texname.empty()) {
+        const int index =
+            texture(mtl.bump_texname, bumpStatement(mtlText, mtl.name), TextureEncoding::Data);
+        const float bm = static_cast<float>(mtl.bump_texopt.bump_multiplier);
+        const float scale = std::isfinite(bm) ? bm : 1.0f;
+        if (readsAsNormalMap(assets.scene().textures[index])) {
+            spdlog::warn(
+                "{}: bump map '{}' is RGB with its blue mostly above one half: read as a "
+                "tangent-space normal map (green toward +v, -bm scaling its tilt), not as heights",
+                where, mtl.bump_texname);
+            m.normalTexture = index;
+            m.normalScale = scale;
+        } else {
+            m.bumpTexture = index;
+            m.bumpScale = scale;
+        }
+    }
     return m;
 }
 
@@ -229,7 +257,6 @@ std::vector<std::string> unmodelledMtlStatements(const tinyobj::material_t& mtl)
     std::vector<std::string> out;
     if (mtl.dissolve < 1.0 && (mtl.illum == 4 || mtl.illum == 6 || mtl.illum == 7))
         out.push_back("d / Tr on glass (ignored: glass transmits by its Fresnel terms)");
-    if (!mtl.bump_texname.empty()) out.push_back("bump / map_bump");
     if (!mtl.normal_texname.empty()) out.push_back("norm");
     if (!mtl.displacement_texname.empty()) out.push_back("disp");
     if (!mtl.specular_texname.empty()) out.push_back("map_Ks");

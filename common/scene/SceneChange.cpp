@@ -43,6 +43,10 @@ void apply(SceneState& s, const SceneChange& change) {
                 // So is the normal map, and its scale with it.
                 value.normalTexture = s.materials[c.material].normalTexture;
                 value.normalScale = s.materials[c.material].normalScale;
+                value.bumpTexture = s.materials[c.material].bumpTexture;
+                value.bumpScale = s.materials[c.material].bumpScale;
+                // The emissive texture too: its factor (`emission`) changes live.
+                value.emissionTexture = s.materials[c.material].emissionTexture;
                 // Coverage is not changed live: which triangles have filter functions is
                 // fixed when the client builds its Embree geometry.
                 value.alphaMode = s.materials[c.material].alphaMode;
@@ -54,6 +58,7 @@ void apply(SceneState& s, const SceneChange& change) {
                 value.metallicRoughnessUv = s.materials[c.material].metallicRoughnessUv;
                 value.normalUv = s.materials[c.material].normalUv;
                 value.alphaUv = s.materials[c.material].alphaUv;
+                value.emissionUv = s.materials[c.material].emissionUv;
                 s.materials[c.material] = value;
             }
         },
