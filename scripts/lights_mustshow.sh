@@ -10,8 +10,11 @@
 # SKIP_BUILD=1. Renders already in build/lights_mustshow/ are reused (--rerun renders again).
 # Everything heavy runs under nice -n 19.
 #
-# Usage: scripts/lights_mustshow.sh [--scenes sponza-sunlit,...] [--ref-spp 4096] [--variants] ...
-#        (every option: scripts/lights_mustshow.py --help)
+# Usage: scripts/lights_mustshow.sh [--scenes cornell-spot,sponza-sunlit,spheres-studio,spheres-courtyard]
+#          [--width 160] [--height 120] [--frames 256] [--pt-spp 64] [--pt-frames 64]
+#          [--cycles-spp 256] [--ref-spp 1024] [--cycles-max-spp 16384] [--seconds 60] [--threads 2]
+#          [--variants] [--no-curve] [--rerun] [--cycles-only] [--no-docs] [--out DIR] [--docs DIR]
+#          [--build DIR]       (scripts/lights_mustshow.py --help says what each does)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 need=()

@@ -5,7 +5,8 @@ Usage:
       SCENE OUT_PREFIX WIDTH HEIGHT THREADS SPP [SPP ...] [--until SECONDS [--max-spp N]] [--seed N]
 
 Writes OUT_PREFIX-<spp>spp.exr for every sample count, and OUT_PREFIX.json with the render time
-of each (seconds spent in bpy.ops.render.render, i.e. scene sync, BVH build and path tracing;
+of each (seconds spent in bpy.ops.render.render, i.e. scene sync, BVH build and path tracing,
+and the CPU seconds of all of Blender's threads over the same span;
 Blender's own start-up is measured separately as "startup_seconds", and a first, unrecorded
 1-spp render as "warmup_seconds"). With --until, after the
 listed counts the count doubles, render after render, until one render has taken SECONDS or
@@ -443,9 +444,12 @@ def main(argv):
     def render(spp):
         cycles.samples = spp
         scene.render.filepath = f"{prefix}-{spp}spp.exr"
-        t0 = time.time()
+        t0, c0 = time.time(), time.process_time()
         bpy.ops.render.render(write_still=True)
-        results["renders"].append({"spp": spp, "seconds": time.time() - t0, "image": scene.render.filepath})
+        # cpu_seconds: the process's CPU time (all threads) over the render; on a shared
+        # machine wall time says as much about the other users as about Cycles.
+        results["renders"].append({"spp": spp, "seconds": time.time() - t0,
+                                   "cpu_seconds": time.process_time() - c0, "image": scene.render.filepath})
         print(f"cycles: {spp} spp in {results['renders'][-1]['seconds']:.2f} s", flush=True)
 
     for spp in spps:
