@@ -2,7 +2,7 @@
 
 Usage:
   blender -b --factory-startup -P scripts/peers/cycles_render.py -- \
-      SCENE OUT_PREFIX WIDTH HEIGHT THREADS SPP [SPP ...] [--until SECONDS [--max-spp N]] [--seed N]
+      SCENE OUT_PREFIX WIDTH HEIGHT THREADS SPP [SPP ...] [--until[-cpu] SECONDS [--max-spp N]] [--seed N]
 
 Writes OUT_PREFIX-<spp>spp.exr for every sample count, and OUT_PREFIX.json with the render time
 of each (seconds spent in bpy.ops.render.render, i.e. scene sync, BVH build and path tracing,
@@ -11,7 +11,9 @@ Blender's own start-up is measured separately as "startup_seconds", and a first,
 1-spp render as "warmup_seconds"). With --until, after the
 listed counts the count doubles, render after render, until one render has taken SECONDS or
 more (or the count would pass --max-spp, 65536 by default): the curve then spans that time.
---seed sets Cycles' seed (1 by default): a reference rendered with another seed is independent
+--until-cpu SECONDS is --until counted in CPU seconds per thread (the render's CPU time over
+THREADS): on a machine shared with others, the time the render would take on THREADS cores of
+its own. --seed sets Cycles' seed (1 by default): a reference rendered with another seed is independent
 of the images it judges.
 
 Faces whose corners repeat another face's are dropped first (igi_scene.read_obj: Cycles shadows
@@ -364,6 +366,11 @@ def main(argv):
         i = argv.index("--max-spp")
         max_spp = int(argv[i + 1])
         del argv[i:i + 2]
+    until_cpu = False
+    if "--until-cpu" in argv:
+        i = argv.index("--until-cpu")
+        argv[i] = "--until"
+        until_cpu = True
     seed = 1
     if "--seed" in argv:
         i = argv.index("--seed")
@@ -456,7 +463,10 @@ def main(argv):
         render(spp)
     if until is not None:
         spp = max(spps)
-        while (not results["renders"] or results["renders"][-1]["seconds"] < until) and spp * 2 <= max_spp:
+        def spent(r):
+            return r["cpu_seconds"] / threads if until_cpu else r["seconds"]
+
+        while (not results["renders"] or spent(results["renders"][-1]) < until) and spp * 2 <= max_spp:
             spp *= 2
             render(spp)
     with open(prefix + ".json", "w", encoding="utf-8") as f:
