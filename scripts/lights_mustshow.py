@@ -154,7 +154,9 @@ def sun_paths(r, scene_path, out_json):
         with open(out_json, "w") as f:
             f.write(line[len("SUNPATHS "):])
     with open(out_json) as f:
-        return json.load(f)
+        found = json.load(f)
+    found["scene"] = os.path.relpath(found["scene"], ROOT)
+    return found
 
 
 def frame_counts(n):
@@ -521,8 +523,8 @@ def markdown(results, a, command, started, seconds):
                       f"the sky {100 * sun['second_missed'] / max(1, hit):.0f} % of the time and reaches a "
                       f"useful second VPL {100 * sun['second_useful'] / max(1, hit):.0f} %. "
                       f"IGI's statistics (`--stats-json`, `frames[].vpls`) give {r['vpls_per_set']:.1f} VPLs "
-                      "per set on average for this scene (its 18 wanted), the paths that hit nothing making "
-                      "none.", ""]
+                      "per set on average for this scene: the paths that hit nothing make none, but a VPL "
+                      "on a roof counts like any other.", ""]
     if any("variants" in r for r in results.values()):
         lines += ["Each light alone (the same renders per light source):", "",
                   "| scene | light | IGI / Cycles ref | IGI / path - 1 | path / Cycles ref | relMSE IGI / Cycles 256 |",
