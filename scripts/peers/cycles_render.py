@@ -2,14 +2,19 @@
 
 Usage:
   blender -b --factory-startup -P scripts/peers/cycles_render.py -- \
-      SCENE OUT_PREFIX WIDTH HEIGHT THREADS SPP [SPP ...] [--until SECONDS [--max-spp N]]
+      SCENE OUT_PREFIX WIDTH HEIGHT THREADS SPP [SPP ...] [--until[-cpu] SECONDS [--max-spp N]] [--seed N]
 
 Writes OUT_PREFIX-<spp>spp.exr for every sample count, and OUT_PREFIX.json with the render time
-of each (seconds spent in bpy.ops.render.render, i.e. scene sync, BVH build and path tracing;
+of each (seconds spent in bpy.ops.render.render, i.e. scene sync, BVH build and path tracing,
+and the CPU seconds of all of Blender's threads over the same span;
 Blender's own start-up is measured separately as "startup_seconds", and a first, unrecorded
 1-spp render as "warmup_seconds"). With --until, after the
 listed counts the count doubles, render after render, until one render has taken SECONDS or
 more (or the count would pass --max-spp, 65536 by default): the curve then spans that time.
+--until-cpu SECONDS is --until counted in CPU seconds per thread (the render's CPU time over
+THREADS): on a machine shared with others, the time the render would take on THREADS cores of
+its own. --seed sets Cycles' seed (1 by default): a reference rendered with another seed is independent
+of the images it judges.
 
 Faces whose corners repeat another face's are dropped first (igi_scene.read_obj: Cycles shadows
 a face by its twin, and McGuire's CornellBox-Original.obj has two); the JSON says how many.
@@ -59,6 +64,16 @@ def _rgba(c):
     return (c[0], c[1], c[2], 1.0)
 
 
+_IMAGES = {}
+
+
+def _image(path):
+    """A texture, loaded once (8-bit images as sRGB, Blender's default for them)."""
+    if path not in _IMAGES:
+        _IMAGES[path] = bpy.data.images.load(path)
+    return _IMAGES[path]
+
+
 def _material(name, mat):
     m = bpy.data.materials.new(name)
     m.use_nodes = True
@@ -70,6 +85,21 @@ def _material(name, mat):
         d = nodes.new("ShaderNodeBsdfDiffuse")
         d.inputs["Color"].default_value = _rgba(mat["diffuse"])
         d.inputs["Roughness"].default_value = 0.0
+        if mat.get("texture"):
+            # Kd x map_Kd, bilinear, wrapping, sRGB-decoded: as our TextureLoader.
+            tex = nodes.new("ShaderNodeTexImage")
+            tex.image = _image(mat["texture"])
+            tex.interpolation = "Linear"
+            tex.extension = "REPEAT"
+            uv = nodes.new("ShaderNodeUVMap")
+            uv.uv_map = "UVMap"
+            links.new(uv.outputs["UV"], tex.inputs["Vector"])
+            mul = nodes.new("ShaderNodeMixRGB")
+            mul.blend_type = "MULTIPLY"
+            mul.inputs["Fac"].default_value = 1.0
+            mul.inputs["Color1"].default_value = _rgba(mat["diffuse"])
+            links.new(tex.outputs["Color"], mul.inputs["Color2"])
+            links.new(mul.outputs["Color"], d.inputs["Color"])
         return d.outputs[0]
 
     def add(a, b):
@@ -120,10 +150,14 @@ def _quad_material(radiance):
     return _material("quad_light", {"type": "diffuse", "diffuse": [0, 0, 0], "emission": radiance})
 
 
-def _add_mesh(name, positions, triangles, normals, material):
+def _add_mesh(name, positions, triangles, normals, material, uvs=None):
     mesh = bpy.data.meshes.new(name)
     mesh.from_pydata([tuple(p) for p in positions], [], [tuple(t) for t in triangles])
     mesh.update()
+    if uvs:
+        layer = mesh.uv_layers.new(name="UVMap")
+        flat = [c for loop in mesh.loops for c in uvs[loop.vertex_index]]
+        layer.data.foreach_set("uv", flat)
     if normals:
         mesh.use_auto_smooth = True
         for poly in mesh.polygons:
@@ -132,6 +166,44 @@ def _add_mesh(name, positions, triangles, normals, material):
     mesh.materials.append(material)
     obj = bpy.data.objects.new(name, mesh)
     bpy.context.scene.collection.objects.link(obj)
+
+
+def _import_gltf(model):
+    """A glTF mesh of the scene file through Blender's own importer (its lights in the
+    importer's "Standard" mode where the importer has the option (3.6 on; Debian's 3.4 has
+    not), which converts lux and candela as we do: docs/SCENE_FORMAT.md),
+    then put where our scene puts it: the importer turns glTF's Y-up into Blender's Z-up,
+    (x, y, z) -> (x, -z, y), which this script's scene (ours, unchanged) does not; so the
+    imported roots hang under an empty of matrix (our transform) x (that turn undone).
+    Principled BSDFs get "GGX" (single scattering, as ours), not "Multiscatter GGX"; their
+    diffuse stays Burley (ours is Lambert: docs/MATERIALS.md)."""
+    import math
+
+    import mathutils
+    import numpy
+
+    if not hasattr(numpy, "bool"):
+        numpy.bool = bool  # Blender 3.4's importer uses numpy.bool, gone from numpy >= 1.24
+    before = set(bpy.data.objects)
+    options = {}
+    props = bpy.ops.import_scene.gltf.get_rna_type().properties
+    if "export_import_convert_lighting_mode" in props.keys():  # Blender 3.6 on; 3.4 lacks it
+        options["export_import_convert_lighting_mode"] = "SPEC"
+    bpy.ops.import_scene.gltf(filepath=model["file"], **options)
+    new = [o for o in bpy.data.objects if o not in before]
+    root = bpy.data.objects.new(model["name"] + "_root", None)
+    bpy.context.scene.collection.objects.link(root)
+    root.matrix_world = mathutils.Matrix(model["matrix"]) @ mathutils.Matrix.Rotation(-math.pi / 2, 4, "X")
+    for o in new:
+        if o.parent is None:
+            o.parent = root
+    for o in new:
+        for slot in getattr(o, "material_slots", []):
+            if slot.material and slot.material.use_nodes:
+                for node in slot.material.node_tree.nodes:
+                    if node.type == "BSDF_PRINCIPLED":
+                        node.distribution = "GGX"
+    print(f"cycles: imported {model['file']}: {len(new)} objects", flush=True)
 
 
 def _camera(cam, width, height):
@@ -171,6 +243,43 @@ def _aim(obj, direction):
     obj.rotation_euler = (-d).to_track_quat("Z", "Y").to_euler()
 
 
+# "ours" (default): a Cycles spot given glTF's ramp by a light shader (_spot_ramp_nodes);
+# "cycles": Cycles' own smoothstep blend over the same cosines (IGI_CYCLES_SPOT_RAMP=cycles).
+SPOT_RAMP = os.environ.get("IGI_CYCLES_SPOT_RAMP", "ours")
+
+
+def _spot_ramp_nodes(data, cos_inner, cos_outer):
+    """A light shader on a Cycles spot (blend 0) that turns Cycles' weight, cos a, into glTF's
+    t^2 with t = clamp((cos a - cos outer) / (cos inner - cos outer), 0, 1). The direction
+    toward the shaded point in the light's own frame is the Texture Coordinate node's Normal
+    (what gobo projections use); the spot shines along local -Z, so cos a = -Normal.z."""
+    data.use_nodes = True
+    nodes, links = data.node_tree.nodes, data.node_tree.links
+    emission = next(n for n in nodes if n.type == "EMISSION")
+    coords = nodes.new("ShaderNodeTexCoord")
+    split = nodes.new("ShaderNodeSeparateXYZ")
+    links.new(coords.outputs["Normal"], split.inputs[0])
+
+    def math_node(op, a, b=None, clamp=False):
+        n = nodes.new("ShaderNodeMath")
+        n.operation = op
+        n.use_clamp = clamp
+        for i, v in enumerate((a, b)):
+            if v is None:
+                continue
+            if isinstance(v, (int, float)):
+                n.inputs[i].default_value = v
+            else:
+                links.new(v, n.inputs[i])
+        return n.outputs[0]
+
+    cos_a = math_node("MULTIPLY", split.outputs["Z"], -1.0)
+    span = max(cos_inner - cos_outer, 1e-6)
+    t = math_node("MULTIPLY", math_node("SUBTRACT", cos_a, cos_outer), 1.0 / span, clamp=True)
+    weight = math_node("DIVIDE", math_node("MULTIPLY", t, t), math_node("MAXIMUM", cos_a, 1e-6))
+    links.new(weight, emission.inputs["Strength"])
+
+
 def _punctual_light(light):
     """Our point, spot and directional lights as Blender lights (module docstring)."""
     import math
@@ -189,10 +298,16 @@ def _punctual_light(light):
         if kind == "spot":
             outer, inner = math.radians(light["outer_deg"]), math.radians(light["inner_deg"])
             data.spot_size = 2.0 * outer
-            # Cycles ramps with smoothstep over cos a from cos(outer) to cos(outer) + blend (1 -
-            # cos(outer)); glTF's (ours) is t^2 over [cos outer, cos inner]. Same end points:
-            data.spot_blend = (math.cos(inner) - math.cos(outer)) / (1.0 - math.cos(outer))
             data.show_cone = False
+            if SPOT_RAMP == "cycles":
+                # Cycles ramps with smoothstep over cos a from cos(outer) to cos(outer) + blend (1 -
+                # cos(outer)); glTF's (ours) is t^2 over [cos outer, cos inner]. Same end points:
+                data.spot_blend = (math.cos(inner) - math.cos(outer)) / (1.0 - math.cos(outer))
+            else:
+                # Ours exactly: no blend (Cycles 3.4 then weighs a direction at angle a from the
+                # axis by cos a alone) and a light shader that multiplies by t^2 / cos a.
+                data.spot_blend = 0.0
+                _spot_ramp_nodes(data, math.cos(inner), math.cos(outer))
     data.color = colour
     data.cycles.cast_shadow = True
     data.cycles.max_bounces = 1024
@@ -251,6 +366,16 @@ def main(argv):
         i = argv.index("--max-spp")
         max_spp = int(argv[i + 1])
         del argv[i:i + 2]
+    until_cpu = False
+    if "--until-cpu" in argv:
+        i = argv.index("--until-cpu")
+        argv[i] = "--until"
+        until_cpu = True
+    seed = 1
+    if "--seed" in argv:
+        i = argv.index("--seed")
+        seed = int(argv[i + 1])
+        del argv[i:i + 2]
     if "--until" in argv:
         i = argv.index("--until")
         until = float(argv[i + 1])
@@ -265,7 +390,10 @@ def main(argv):
         bpy.data.objects.remove(obj, do_unlink=True)
     materials = {name: _material(name, m) for name, m in flat["materials"].items()}
     for mesh in flat["meshes"]:
-        _add_mesh(mesh["name"], mesh["positions"], mesh["triangles"], mesh["normals"], materials[mesh["material"]])
+        _add_mesh(mesh["name"], mesh["positions"], mesh["triangles"], mesh["normals"], materials[mesh["material"]],
+                  mesh.get("uvs"))
+    for model in flat.get("gltf", []):
+        _import_gltf(model)
     for i, q in enumerate(flat["quad_lights"]):
         c, e1, e2 = q["corner"], q["edge1"], q["edge2"]
         p = [c, [a + b for a, b in zip(c, e1)], [a + b + d for a, b, d in zip(c, e1, e2)], [a + b for a, b in zip(c, e2)]]
@@ -294,7 +422,7 @@ def main(argv):
     cycles.transparent_max_bounces = 16
     cycles.pixel_filter_type = "BOX"
     cycles.filter_width = 1.0
-    cycles.seed = 1
+    cycles.seed = seed
     scene.render.threads_mode = "FIXED"
     scene.render.threads = threads
     scene.render.resolution_x = width
@@ -323,16 +451,22 @@ def main(argv):
     def render(spp):
         cycles.samples = spp
         scene.render.filepath = f"{prefix}-{spp}spp.exr"
-        t0 = time.time()
+        t0, c0 = time.time(), time.process_time()
         bpy.ops.render.render(write_still=True)
-        results["renders"].append({"spp": spp, "seconds": time.time() - t0, "image": scene.render.filepath})
+        # cpu_seconds: the process's CPU time (all threads) over the render; on a shared
+        # machine wall time says as much about the other users as about Cycles.
+        results["renders"].append({"spp": spp, "seconds": time.time() - t0,
+                                   "cpu_seconds": time.process_time() - c0, "image": scene.render.filepath})
         print(f"cycles: {spp} spp in {results['renders'][-1]['seconds']:.2f} s", flush=True)
 
     for spp in spps:
         render(spp)
     if until is not None:
         spp = max(spps)
-        while (not results["renders"] or results["renders"][-1]["seconds"] < until) and spp * 2 <= max_spp:
+        def spent(r):
+            return r["cpu_seconds"] / threads if until_cpu else r["seconds"]
+
+        while (not results["renders"] or spent(results["renders"][-1]) < until) and spp * 2 <= max_spp:
             spp *= 2
             render(spp)
     with open(prefix + ".json", "w", encoding="utf-8") as f:

@@ -10,9 +10,12 @@ Standard library only: it runs under /usr/bin/python3 and under Blender's Python
 
 Output of `flatten(path)` (also written as JSON by `python3 igi_scene.py scene out.json`):
   camera:    {position, look_at, up, fov_y}     (fov_y: vertical, degrees)
-  materials: {name: {type: diffuse|glossy|mirror|glass, diffuse, specular, ior, emission}}
+  materials: {name: {type: diffuse|glossy|mirror|glass, diffuse, specular, ior, emission,
+               texture (absolute path of map_Kd, or absent)}}
   meshes:    [{name, material, positions: [[x,y,z]], normals: [[x,y,z]] or None,
-               triangles: [[i,j,k]]}]   (one entry per material and source mesh)
+               uvs: [[u,v]] or None, triangles: [[i,j,k]]}]   (one entry per material and source mesh)
+  gltf:      [{file (absolute path), name, matrix (4x4 row-major: our T*Rz*Ry*Rx*S)}]: glTF meshes,
+             which the peer imports itself (only Cycles does: Blender's glTF importer)
   quad_lights: [{corner, edge1, edge2, radiance}]   (emit towards cross(edge1, edge2))
   punctual_lights (only with punctual_lights=True): [{type: point|spot|directional, name,
                position, intensity (W/sr), direction (normalized, the way light travels),
@@ -78,12 +81,29 @@ def _statements(path):
                 yield words[0], words[1:]
 
 
+def _find_file(folder, name):
+    """`name` in `folder`, or the file there whose name matches it when case is ignored (our
+    loader's rule: Sponza's MTL says 00_SKAP.JPG, the file is 00_skap.JPG)."""
+    path = os.path.join(folder, name)
+    if os.path.exists(path):
+        return path
+    head, base = os.path.split(path)
+    if os.path.isdir(head):
+        for entry in os.listdir(head):
+            if entry.lower() == base.lower():
+                return os.path.join(head, entry)
+    raise SystemExit(f"texture '{name}' not found in {folder}")
+
+
 def read_mtl(path):
     """MTL statements -> igi materials, following the table in docs/SCENE_FORMAT.md."""
     raw, current = {}, None
     for key, args in _statements(path):
         if key == "newmtl":
             current = raw.setdefault(" ".join(args), {})
+        elif current is not None and key == "map_Kd" and args:
+            # The last word is the file (options such as -s come before it).
+            current["map_Kd"] = _find_file(os.path.dirname(path), args[-1])
         elif current is not None and key in ("Kd", "Ks", "Ke"):
             current[key] = _vec([float(a) for a in args[:3]] if len(args) >= 3 else float(args[0]))
         elif current is not None and key in ("Ns", "Ni"):
@@ -104,6 +124,8 @@ def _material_from_mtl(m):
         mat.update(type="glass", ior=ni if ni > 1.0 else 1.5)
     elif illum == 2 and max(ks) > 0:
         mat.update(type="mirror" if m.get("Ns", 0.0) >= 1000 else "glossy", specular=ks)
+    if "map_Kd" in m:
+        mat["texture"] = m["map_Kd"]
     total = max(a + b for a, b in zip(mat["diffuse"], mat["specular"]))
     if total > 1.0:
         mat["diffuse"] = [a / total for a in mat["diffuse"]]
@@ -133,7 +155,7 @@ def read_obj(path, transform, mesh_name, drop_duplicate_faces=False, seen_faces=
     and the short box's right face likewise. Our renderer draws a twin on top of its face
     harmlessly; Blender Cycles shadows a face by its twin and renders it nearly black."""
     folder = os.path.dirname(path)
-    positions, normals, materials = [], [], {}
+    positions, normals, uvs, materials = [], [], [], {}
     groups, current = {}, "default"
     seen = seen_faces if seen_faces is not None else set()
     dropped = 0
@@ -142,6 +164,8 @@ def read_obj(path, transform, mesh_name, drop_duplicate_faces=False, seen_faces=
             positions.append(transform.point([float(a) for a in args[:3]]))
         elif key == "vn":
             normals.append(transform.direction([float(a) for a in args[:3]]))
+        elif key == "vt":
+            uvs.append([float(a) for a in args[:2]] + [0.0] * (2 - len(args[:2])))
         elif key == "mtllib":
             materials.update(read_mtl(os.path.join(folder, " ".join(args))))
         elif key == "usemtl":
@@ -152,13 +176,16 @@ def read_obj(path, transform, mesh_name, drop_duplicate_faces=False, seen_faces=
                 parts = a.split("/")
                 vi = int(parts[0])
                 vi = vi - 1 if vi > 0 else len(positions) + vi
-                ni = None
+                ni = ti = None
                 if len(parts) >= 3 and parts[2]:
                     ni = int(parts[2])
                     ni = ni - 1 if ni > 0 else len(normals) + ni
-                corners.append((vi, ni))
+                if len(parts) >= 2 and parts[1]:
+                    ti = int(parts[1])
+                    ti = ti - 1 if ti > 0 else len(uvs) + ti
+                corners.append((vi, ni, ti))
             if drop_duplicate_faces:
-                key = _face_key([positions[vi] for vi, _ in corners])
+                key = _face_key([positions[vi] for vi, _, _ in corners])
                 if key in seen:
                     dropped += 1
                     continue
@@ -172,22 +199,26 @@ def read_obj(path, transform, mesh_name, drop_duplicate_faces=False, seen_faces=
         materials.setdefault(name, _default_material())
     meshes = []
     for material, triangles in groups.items():
-        index, mesh_pos, mesh_nrm, tris = {}, [], [], []
+        index, mesh_pos, mesh_nrm, mesh_uv, tris = {}, [], [], [], []
         has_normals = all(c[1] is not None for t in triangles for c in t)
+        # Missing uvs in a mesh that has some are (0, 0), as our loader reads them.
+        has_uvs = any(c[2] is not None for t in triangles for c in t)
         for t in triangles:
             ids = []
-            for vi, ni in t:
-                key = (vi, ni if has_normals else None)
+            for vi, ni, ti in t:
+                key = (vi, ni if has_normals else None, ti if has_uvs else None)
                 if key not in index:
                     index[key] = len(mesh_pos)
                     mesh_pos.append(positions[vi])
                     if has_normals:
                         mesh_nrm.append(normals[ni])
+                    if has_uvs:
+                        mesh_uv.append(uvs[ti] if ti is not None else [0.0, 0.0])
                 ids.append(index[key])
             tris.append(ids)
         meshes.append({"name": f"{mesh_name}/{material}", "material": material,
                        "positions": mesh_pos, "normals": mesh_nrm if has_normals else None,
-                       "triangles": tris})
+                       "uvs": mesh_uv if has_uvs else None, "triangles": tris})
     return meshes, materials, dropped
 
 
@@ -220,10 +251,15 @@ def flatten(scene_path, width=None, height=None, drop_duplicate_faces=False, pun
     width = width or image.get("width", 640)
     height = height or image.get("height", 480)
 
-    meshes, materials, dropped, seen_faces = [], {}, 0, set()
+    meshes, materials, dropped, seen_faces, gltf = [], {}, 0, set(), []
     for entry in spec.get("meshes", []):
         path = os.path.join(folder, entry["file"])
         name = entry.get("name", os.path.splitext(os.path.basename(path))[0])
+        if path.lower().endswith((".gltf", ".glb")):
+            t = Transform(entry.get("transform"))
+            matrix = [t.linear[i] + [t.translate[i]] for i in range(3)] + [[0.0, 0.0, 0.0, 1.0]]
+            gltf.append({"file": os.path.abspath(path), "name": name, "matrix": matrix})
+            continue
         m, mats, d = read_obj(path, Transform(entry.get("transform")), name, drop_duplicate_faces, seen_faces)
         dropped += d
         # Materials are per file in igi; names are unique across these scenes' files, so one
@@ -277,14 +313,18 @@ def flatten(scene_path, width=None, height=None, drop_duplicate_faces=False, pun
         c, e1, e2 = q["corner"], q["edge1"], q["edge2"]
         points += [c, [a + b for a, b in zip(c, e1)], [a + b for a, b in zip(c, e2)],
                    [a + b + d for a, b, d in zip(c, e1, e2)]]
-    bounds = [[min(p[i] for p in points) for i in range(3)], [max(p[i] for p in points) for i in range(3)]]
+    bounds = None
+    if points:
+        bounds = [[min(p[i] for p in points) for i in range(3)], [max(p[i] for p in points) for i in range(3)]]
     camera = spec.get("camera")
     if camera is None:
+        if gltf or not points:
+            raise SystemExit(f"{scene_path}: a scene with glTF meshes needs a camera for this peer")
         camera = _frame_camera(bounds, width, height)
     camera = {"position": _vec(camera["position"]), "look_at": _vec(camera["look_at"]),
               "up": _vec(camera.get("up", [0, 1, 0])), "fov_y": float(camera.get("fov_y", 45.0))}
     return {"camera": camera, "width": width, "height": height, "materials": materials,
-            "meshes": meshes, "quad_lights": quads, "punctual_lights": punctual, "environment": environment,
+            "meshes": meshes, "gltf": gltf, "quad_lights": quads, "punctual_lights": punctual, "environment": environment,
             "bounds": bounds, "dropped_duplicate_faces": dropped}
 
 
