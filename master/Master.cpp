@@ -10,6 +10,9 @@
 
 #include "Codec.h"
 #include "ControlCommand.h"
+#include "ImageSize.h"
+#include "OptionWarnings.h"
+#include "RenderFlags.h"
 #include "ScenePick.h"
 #include "SequencePath.h"
 #include "ViewPage.h"
@@ -63,6 +66,35 @@ double secondsSince(Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
+// A port that cannot be opened ("bind: Address already in use") is the user's to fix: say
+// which flag and which address.
+template <typename Open>
+auto openPort(const std::string& flag, const std::string& host, int port, Open open) {
+    try {
+        return open();
+    } catch (const boost::system::system_error& e) {
+        throw std::runtime_error(
+            fmt::format("{} {}:{}: cannot listen there: {}", flag, host, port, e.code().message()));
+    }
+}
+
+// How the scene is lit, when that is not the scene's own lights: a black image must not come
+// as a surprise.
+void reportLighting(const Scene& scene, const MasterOptions& o) {
+    if (sceneHasHeadlight(scene)) {
+        const std::string ext = o.scene.extension().string();
+        spdlog::info("a headlight at the camera lights the scene ({})",
+                     o.headlight      ? "--headlight"
+                     : ext != ".json" ? "nothing in the model emits light"
+                                      : "the scene file asks for it");
+    } else if (!sceneHasEmitter(scene)) {
+        spdlog::warn(
+            "scene {} has no light (no lights, environment or emissive material): the image "
+            "will be black; --headlight adds a light at the camera",
+            o.scene.string());
+    }
+}
+
 }  // namespace
 
 Master::Master(MasterOptions options)
@@ -79,19 +111,31 @@ void Master::loadScene() {
     SceneBundle bundle;
     SceneLoadOptions loadOptions;
     loadOptions.allowOutsidePaths = options_.allowOutsidePaths;
+    loadOptions.headlight = options_.headlight;
     scene_ = loadSceneFile(options_.scene, &bundle, loadOptions);
-    applyRenderSettingsJson(nlohmann::json::parse(options_.renderOverridesJson), scene_.render,
-                            "command line", "/render");
-    if (options_.width > 0) scene_.image.width = options_.width;
-    if (options_.height > 0) scene_.image.height = options_.height;
+    reportLighting(scene_, options_);
+    const nlohmann::json overrides = nlohmann::json::parse(options_.renderOverridesJson);
+    try {
+        applyRenderSettingsJson(overrides, scene_.render, "command line", "/render");
+    } catch (const SceneError& e) {
+        throw std::invalid_argument(commandLineMessage(e));  // names the flag, not the key
+    }
+    for (const std::string& warning : uselessOptionWarnings(options_, overrides, scene_.render))
+        spdlog::warn("{}", warning);
+    const ImageSize size = overriddenImageSize({scene_.image.width, scene_.image.height},
+                                               options_.width, options_.height);
+    scene_.image.width = size.width;
+    scene_.image.height = size.height;
     if (options_.exposureSet) scene_.image.exposure = options_.exposure;
     sceneData_.bundle = std::move(bundle);
     sceneData_.settings = scene_.render;
     sceneData_.image = scene_.image;
     sceneData_.camera = scene_.camera;
     std::unique_ptr<Animation> animation;
-    if (!options_.animation.empty())
+    if (!options_.animation.empty()) {
         animation = std::make_unique<Animation>(Animation::load(options_.animation, scene_));
+        fitFramesToAnimation(*animation);
+    }
     timeline_ = std::make_unique<SceneTimeline>(SceneState::of(scene_), std::move(animation),
                                                 joinHistoryDepth(scene_.render));
 
@@ -105,21 +149,38 @@ void Master::loadScene() {
         std::clamp<std::size_t>(kOpenFrameBufferBudget / frameBytes, 2, kFramesInFlight));
     compositor_ =
         std::make_unique<FrameCompositor>(scene_.image.width, scene_.image.height, s, pool_);
-    spdlog::info(
-        "scene {}: {} meshes, {} materials, {}x{} pixels, {} tiles per frame, {} integrator",
-        options_.scene.string(), scene_.meshes.size(), scene_.materials.size(), scene_.image.width,
-        scene_.image.height, scheduler_->layout().size(),
-        s.integrator == IntegratorKind::Path ? "path" : "IGI");
+    spdlog::info("scene {}: {} meshes, {} materials, {}x{} pixels, {} tiles per frame, {}",
+                 options_.scene.string(), scene_.meshes.size(), scene_.materials.size(),
+                 scene_.image.width, scene_.image.height, scheduler_->layout().size(),
+                 s.integrator == IntegratorKind::Path
+                     ? fmt::format("path tracer, {} samples per pixel", s.pathSamples)
+                     : fmt::format("IGI integrator, GI mode {}", giModeName(s.gi)));
+}
+
+void Master::fitFramesToAnimation(const Animation& animation) {
+    const int length = int(animation.lastKeyFrame()) + 1;
+    if (!options_.framesGiven) {
+        // One frame of a 32-frame animation is never what was meant.
+        options_.frames = length;
+        if (progress_) progress_->setTotalFrames(length);
+        spdlog::info("--animation {}: rendering its {} frames (0 to its last keyframe {})",
+                     options_.animation.string(), length, length - 1);
+    } else if (options_.frames > 0 && options_.frames < length) {
+        spdlog::warn("--frames {} stops before the end of --animation {}: its last keyframe is {}",
+                     options_.frames, options_.animation.string(), length - 1);
+    }
 }
 
 void Master::listen() {
     using boost::asio::ip::tcp;
     const tcp::endpoint endpoint(boost::asio::ip::make_address(options_.listenHost),
                                  options_.listenPort);
-    acceptor_.open(endpoint.protocol());
-    acceptor_.set_option(tcp::acceptor::reuse_address(true));
-    acceptor_.bind(endpoint);
-    acceptor_.listen();
+    openPort("--listen", options_.listenHost, options_.listenPort, [&] {
+        acceptor_.open(endpoint.protocol());
+        acceptor_.set_option(tcp::acceptor::reuse_address(true));
+        acceptor_.bind(endpoint);
+        acceptor_.listen();
+    });
     spdlog::info("listening on {}:{}", options_.listenHost, acceptor_.local_endpoint().port());
     accept();
 }
@@ -521,6 +582,7 @@ void Master::scheduleTick() {
         // clients pick up copies of tiles that have been out too long.
         if (++ticks_ % 50 == 0)
             for (auto& [id, s] : sessions_) s.connection->send(proto::Heartbeat{}, 0, 0);
+        stats_.noteTime(secondsSince(created_));  // igi-ctl status's rates
         dispatch();
         scheduleTick();
     });
@@ -567,11 +629,13 @@ int Master::run() {
     }
     listen();
     if (options_.control) {
-        control_ = std::make_unique<ControlServer>(
-            io_, options_.controlHost, options_.controlPort,
-            [this](const std::string& line, ControlServer::Reply reply) {
-                onControl(line, std::move(reply));
-            });
+        control_ = openPort("--control", options_.controlHost, options_.controlPort, [&] {
+            return std::make_unique<ControlServer>(
+                io_, options_.controlHost, options_.controlPort,
+                [this](const std::string& line, ControlServer::Reply reply) {
+                    onControl(line, std::move(reply), "igi-ctl");
+                });
+        });
         spdlog::info("control commands on {}:{}", options_.controlHost, control_->port());
     }
     if (options_.view) startView();
@@ -593,6 +657,8 @@ int Master::run() {
                                          "--threads",   std::to_string(threads),
                                          "--log-level", options_.clientLogLevel};
         if (options_.replayClients) args.push_back("--replay");
+        // They load the scene this master loaded and logged: one warning once, not N + 1 times.
+        args.push_back("--no-scene-warnings");
         // They belong to this session: when it ends or this master dies, they go too.
         args.insert(args.end(), {"--reconnect-seconds", "0"});
         std::vector<std::string> environment;
@@ -622,25 +688,42 @@ int Master::run() {
     if (exitCode_ != 0) return exitCode_;
 
     const Image& image = compositor_->shown();
+    // One output that cannot be written (its disk full since the start) must not cost the
+    // others theirs.
+    int exitCode = 0;
     for (const auto& path : options_.outputs) {
-        writeImage(path, image, scene_.image.exposure);
-        spdlog::info("wrote {}", path.string());
+        try {
+            writeImage(path, image, scene_.image.exposure);
+            spdlog::info("wrote {}", path.string());
+        } catch (const std::exception& e) {
+            spdlog::error("--output {}: {}", path.string(), e.what());
+            exitCode = 1;
+        }
     }
     const double start = std::chrono::duration<double>(renderStart_ - created_).count();
     const double end = std::chrono::duration<double>(renderEnd_ - created_).count();
     spdlog::info("{} frames in {:.2f} s: {:.2f} fps", nextFrameToFinish_, end - start,
                  stats_.fps(end - start));
-    if (!options_.statsJson.empty()) {
-        stats_.writeJson(
-            options_.statsJson,
-            {{"scene", options_.scene.string()},
-             {"width", std::to_string(scene_.image.width)},
-             {"height", std::to_string(scene_.image.height)},
-             {"integrator", scene_.render.integrator == IntegratorKind::Path ? "path" : "igi"}},
-            start, end);
-    }
+    if (!options_.statsJson.empty())
+        stats_.writeJson(options_.statsJson, sessionJson(), start, end);
+    return exitCode;
+}
 
-    return 0;
+nlohmann::json Master::sessionJson() const {
+    // Every setting that shaped the run, so that two runs' statistics can be told apart.
+    const RenderSettings& s = scene_.render;
+    return {{"scene", options_.scene.string()},
+            {"width", scene_.image.width},
+            {"height", scene_.image.height},
+            {"exposure", scene_.image.exposure},
+            {"integrator", s.integrator == IntegratorKind::Path ? "path" : "igi"},
+            {"gi", giModeName(s.gi)},
+            {"seed", s.seed},
+            {"frames", options_.frames},
+            {"animation", options_.animation.string()},
+            {"local_clients", options_.localClients},
+            {"remote_clients", options_.remoteClients},
+            {"render", renderSettingsJson(s)}};
 }
 
 }  // namespace igi
@@ -676,16 +759,20 @@ void Master::writeFrameImages(std::uint32_t frame) {
             nlohmann::json answer{{"ok", true}, {"path", path}, {"frame", frame}};
             try {
                 writeImage(path, *image, exposure);
+                spdlog::info("snapshot of frame {} written to {}", frame, path);
             } catch (const std::exception& e) {
                 answer = {{"ok", false}, {"error", e.what()}};
+                spdlog::warn("snapshot of frame {} failed: {}", frame, e.what());
             }
             boost::asio::post(io_, [reply, text = answer.dump()] { reply(text); });
         });
     }
 }
 
-void Master::onControl(const std::string& line, ControlServer::Reply reply) {
+void Master::onControl(const std::string& line, ControlServer::Reply reply, const char* from) {
     auto error = [&](const std::string& what) {
+        spdlog::log(std::string(from) == "view" ? spdlog::level::debug : spdlog::level::warn,
+                    "{} command refused: {}", from, what);
         reply(nlohmann::json{{"ok", false}, {"error", what}}.dump());
     };
     ControlRequest request;
@@ -694,6 +781,13 @@ void Master::onControl(const std::string& line, ControlServer::Reply reply) {
     } catch (const std::exception& e) {
         return error(e.what());
     }
+    // What changed a session, and when, belongs in its log; the queries that scripts and the
+    // view repeat do not.
+    const bool query = request.kind == ControlRequest::Kind::Status ||
+                       request.kind == ControlRequest::Kind::Scene ||
+                       request.kind == ControlRequest::Kind::Pick;
+    spdlog::log(query || std::string(from) == "view" ? spdlog::level::debug : spdlog::level::info,
+                "{} command at frame {}: {}", from, nextFrameToOpen_, line);
     switch (request.kind) {
         case ControlRequest::Kind::Change:
             try {
@@ -701,9 +795,13 @@ void Master::onControl(const std::string& line, ControlServer::Reply reply) {
             } catch (const std::exception& e) {
                 return error(e.what());
             }
-            return reply(nlohmann::json{
-                {"ok", true}, {"changes", request.changes.size()}, {"from_frame", nextFrameToOpen_}}
-                             .dump());
+            {
+                nlohmann::json answer{{"ok", true},
+                                      {"changes", request.changes.size()},
+                                      {"from_frame", nextFrameToOpen_}};
+                if (!request.warnings.empty()) answer["warnings"] = request.warnings;
+                return reply(answer.dump());
+            }
         case ControlRequest::Kind::Status: {
             nlohmann::json status = statusJson();
             status["ok"] = true;
@@ -722,6 +820,9 @@ void Master::onControl(const std::string& line, ControlServer::Reply reply) {
             return reply(nlohmann::json{{"ok", true}, {"exposure", request.exposure}}.dump());
         case ControlRequest::Kind::Snapshot:
             if (request.path.empty()) request.path = defaultSnapshotPath();
+            // Relative to the master's folder, which the one asking may not know: the reply
+            // and the log give the whole path.
+            request.path = std::filesystem::absolute(request.path).lexically_normal().string();
             snapshots_.push_back({request.path, std::move(reply), nextFrameToOpen_});
             return;
         case ControlRequest::Kind::Stop:
@@ -907,10 +1008,12 @@ void Master::startView() {
     const bool loopback = boost::asio::ip::make_address(o.host).is_loopback();
     if (!loopback) o.token = net::ClusterKey::randomSecret().substr(0, 32);
     const std::string token = o.token;
-    view_ = std::make_unique<ViewServer>(
-        io_, std::move(o), [this](const std::string& line, ControlServer::Reply reply) {
-            onControl(line, std::move(reply));
-        });
+    view_ = openPort("--view", options_.viewHost, options_.viewPort, [&] {
+        return std::make_unique<ViewServer>(
+            io_, std::move(o), [this](const std::string& line, ControlServer::Reply reply) {
+                onControl(line, std::move(reply), "view");
+            });
+    });
     if (loopback)
         spdlog::info("view on http://{}:{}/", options_.viewHost, view_->port());
     else

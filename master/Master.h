@@ -76,6 +76,10 @@ class Master {
     };
 
     void loadScene();
+    /// Without --frames, an animation runs to its last keyframe; a shorter --frames is warned.
+    void fitFramesToAnimation(const Animation& animation);
+    /// The run's settings, for --stats-json.
+    nlohmann::json sessionJson() const;
     void setUpSecret();
     std::uint32_t maxTileResultBytes() const;
     void listen();
@@ -91,7 +95,9 @@ class Master {
     void onComposited(std::uint32_t frame, double seconds);
     /// Frame `frame` (still in frames_) is in the compositor's image: its stats say so.
     void noteShown(std::uint32_t frame);
-    void onControl(const std::string& line, ControlServer::Reply reply);
+    /// A control command from `from` ("igi-ctl" or "view"): the first's are logged, the view's
+    /// (a drag sends dozens a second) only at debug level.
+    void onControl(const std::string& line, ControlServer::Reply reply, const char* from);
     void writeFrameImages(std::uint32_t frame);
     void startView();
     /// The newest composited image goes to the view's browsers: tone-mapped and encoded on the
