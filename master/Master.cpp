@@ -513,8 +513,13 @@ void Master::onComposited(std::uint32_t f, double seconds) {
     noteShown(f);
     stats_.noteFrameDone(secondsSince(created_));
     // On a terminal the progress line says it; the frame lines are for logs and the curious.
-    spdlog::log(progress_ ? spdlog::level::debug : spdlog::level::info, "{}",
-                stats_.summaryLine(f));
+    // A live session there has no progress line: a line a second, saying what it left out.
+    const bool paced = options_.paceFrameLines && !progress_;
+    const bool logged = !progress_ && (!paced || framePace_.due(secondsSince(created_)));
+    spdlog::log(logged ? spdlog::level::info : spdlog::level::debug, "{}{}", stats_.summaryLine(f),
+                paced && logged && framePace_.skippedBefore() > 0
+                    ? fmt::format(" ({} frames since the last line)", framePace_.skippedBefore())
+                    : "");
     if (progress_) progress_->update(int(f + 1), stats_.recentFps(), readyClients());
     writeFrameImages(f);
     publishToView(f);

@@ -18,6 +18,7 @@
 #include "CodedFrame.h"
 #include "ControlServer.h"
 #include "FrameCompositor.h"
+#include "FrameLogPace.h"
 #include "LocalClients.h"
 #include "MasterOptions.h"
 #include "Messages.h"
@@ -147,6 +148,7 @@ class Master {
     std::optional<ViewFrame> viewPending_;
     bool viewEncoding_ = false;
     std::shared_ptr<ProgressLine> progress_;
+    FrameLogPace framePace_;  ///< with options_.paceFrameLines
     int snapshotsTaken_ = 0;
     boost::asio::signal_set signals_;
     std::int64_t compositedEpoch_ = -1;  ///< epoch of the frame last composited

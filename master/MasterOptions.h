@@ -45,6 +45,8 @@ struct MasterOptions {
     int maxClients = 64;           ///< connections beyond this are turned away
     double handshakeSeconds = 10;  ///< a connection must prove itself within this
     bool replayClients = false;    ///< local clients replay recorded tiles (igi-client --replay)
+    /// A live session on a terminal: one frame line a second, not one a frame (FrameLogPace).
+    bool paceFrameLines = false;
     /// Render settings from the command line, as a JSON object in the scene file's "render"
     /// syntax (so both are validated the same way), plus image overrides.
     std::string renderOverridesJson = "{}";

@@ -6,6 +6,8 @@
 #include <boost/asio/ip/address.hpp>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
 #include <charconv>
 #include <cstdint>
 
@@ -299,6 +301,7 @@ int main(int argc, char** argv) {
     // On a terminal, a finite run draws a progress line under the log (before the pattern is
     // set: it replaces the logger's sink).
     auto progress = igi::ProgressLine::attachIfTerminal(o.frames);
+    o.paceFrameLines = o.frames == 0 && isatty(STDERR_FILENO);
     spdlog::set_level(spdlog::level::from_str(logLevel));
     spdlog::set_pattern("[%H:%M:%S.%e] [master] [%l] %v");
     o.scene = scene;

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -278,6 +279,34 @@ TEST(CommandLine, PortErrorsNameTheFlagAndTheAddress) {
     EXPECT_EQ(ctl.exitCode, 2) << ctl.output;
     EXPECT_TRUE(contains(ctl.output, "--connect 127.0.0.1:" + closed + ": cannot reach the master"))
         << ctl.output;
+    fs::remove_all(dir);
+}
+
+// Item 9: a live session on a terminal logs a frame line a second, not one a frame.
+TEST(CommandLine, ALiveSessionOnATerminalLogsAFrameLineASecond) {
+    const fs::path dir = scratchDir("live-tty");
+    const std::string port = std::to_string(freePort());
+    auto args = sceneArgs(0);
+    args.insert(args.end(), {"--local-clients", "1", "--control", "127.0.0.1:" + port});
+    std::string line;
+    for (const std::string& a : masterCommand(args)) line += (line.empty() ? "'" : " '") + a + "'";
+    // util-linux's script runs the master on a pseudo-terminal (as tests/Progress_test.cpp).
+    const fs::path log = dir / "tty.log";
+    const pid_t script =
+        spawnProcess({"/usr/bin/script", "-qec", line, (dir / "typescript").string()}, log);
+    ASSERT_FALSE(waitForLine(log, std::regex(R"(frame +0:)"), script).empty()) << readFile(log);
+    std::this_thread::sleep_for(std::chrono::seconds(3));
+    const nlohmann::json stop = replyOf(runCtl(dir / "stop.log", port, {"stop"}));
+    ASSERT_TRUE(stop.value("ok", false)) << stop.dump();
+    ASSERT_EQ(waitProcess(script, 120), 0) << readFile(log);
+    const std::string text = readFile(log);
+    const std::regex frameLine(R"(frame +\d+:)");
+    const auto lines = std::distance(std::sregex_iterator(text.begin(), text.end(), frameLine),
+                                     std::sregex_iterator());
+    const int frames = stop["frames_done"].get<int>();
+    EXPECT_GT(frames, 10) << "too slow to tell:\n" << text;
+    EXPECT_LE(lines, 6) << frames << " frames\n" << text;
+    EXPECT_TRUE(contains(text, "frames since the last line)")) << text;
     fs::remove_all(dir);
 }
 
