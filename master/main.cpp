@@ -306,7 +306,11 @@ int main(int argc, char** argv) {
     spdlog::set_pattern("[%H:%M:%S.%e] [master] [%l] %v");
     o.scene = scene;
     o.framesGiven = framesOpt->count() > 0;
-    o.clientLogLevel = logLevel;
+    // Under a progress line, local clients' info lines (connected, ready, done: the master
+    // says as much) would cut into it; their warnings and errors still show.
+    o.clientLogLevel = progress && spdlog::level::from_str(logLevel) < spdlog::level::warn
+                           ? std::string("warn")
+                           : logLevel;
     for (const auto& out : outputs) o.outputs.emplace_back(out);
     o.exposureSet = exposure->count() > 0;
     try {

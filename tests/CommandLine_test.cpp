@@ -310,6 +310,22 @@ TEST(CommandLine, ALiveSessionOnATerminalLogsAFrameLineASecond) {
     fs::remove_all(dir);
 }
 
+// Item 14: under the progress line, local clients' info lines do not cut into it.
+TEST(CommandLine, LocalClientsKeepQuietUnderTheProgressLine) {
+    const fs::path dir = scratchDir("quiet-tty");
+    auto args = sceneArgs(3);
+    args.insert(args.end(), {"--local-clients", "2"});
+    std::string line;
+    for (const std::string& a : masterCommand(args)) line += (line.empty() ? "'" : " '") + a + "'";
+    const ProcessResult tty = runProcess(
+        {"/usr/bin/script", "-qec", line, (dir / "typescript").string()}, dir / "tty.log");
+    ASSERT_EQ(tty.exitCode, 0) << tty.output;
+    EXPECT_TRUE(contains(tty.output, "frame 3/3 [")) << tty.output;
+    EXPECT_FALSE(std::regex_search(tty.output, std::regex(R"(\[client \d+\] \[info\])")))
+        << tty.output;
+    fs::remove_all(dir);
+}
+
 // Items 4, 9 (commands and snapshots logged), 10, 15 and 19: a live session under igi-ctl.
 TEST(CommandLine, IgiCtlGetsRatesAtOnceWholePathsAndWarningsAndTheLogSaysWhatItDid) {
     const fs::path dir = scratchDir("ctl");
