@@ -172,6 +172,24 @@ void ClientSession::onClose(const std::string& reason) {
     io_.stop();
 }
 
+namespace {
+
+// The scene, with the loader's warnings left out when asked. spdlog's level is global: the
+// few seconds of loading also hide other threads' warnings, of which a client that has not
+// started rendering has none but a lost connection's (which ends the load anyway).
+Scene loadBundleQuietlyIf(bool quiet, const SceneBundle& bundle) {
+    const spdlog::level::level_enum level = spdlog::get_level();
+    if (!quiet || level > spdlog::level::warn) return loadSceneBundle(bundle);
+    struct Restore {
+        spdlog::level::level_enum level;
+        ~Restore() { spdlog::set_level(level); }
+    } restore{level};
+    spdlog::set_level(spdlog::level::err);
+    return loadSceneBundle(bundle);
+}
+
+}  // namespace
+
 void ClientSession::onSceneData(const proto::Header& header, proto::SceneData data) {
     if (sceneRequested_) return refuse("a second scene in one session");
     sceneRequested_ = true;
@@ -180,7 +198,8 @@ void ClientSession::onSceneData(const proto::Header& header, proto::SceneData da
     pool_.submit([this, epoch = header.epoch, data = std::move(data)]() mutable {
         try {
             const auto start = std::chrono::steady_clock::now();
-            auto scene = std::make_unique<Scene>(loadSceneBundle(data.bundle));
+            auto scene =
+                std::make_unique<Scene>(loadBundleQuietlyIf(!options_.sceneWarnings, data.bundle));
             scene->render = data.settings;
             scene->image = data.image;
             scene->camera = data.camera;

@@ -35,6 +35,9 @@ struct ClientOptions {
     std::filesystem::path secretFile;  ///< the cluster secret (else IGI_SECRET)
     bool insecure = false;             ///< join a master without a secret (loopback tests)
     double reconnectSeconds = 60;      ///< after losing the master, try again this long (0: exit)
+    /// Log the scene loader's warnings. A master's local clients load the bundle it loaded
+    /// and logged already, into the same terminal: there they would repeat each warning.
+    bool sceneWarnings = true;
 };
 
 /// How a session ended (the process exit code).

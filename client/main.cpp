@@ -35,7 +35,12 @@ int main(int argc, char** argv) {
     app.add_option("--reconnect-seconds", options.reconnectSeconds,
                    "after losing the master, keep trying to reach it (again) this long; 0: exit")
         ->capture_default_str();
+    bool quietScene = false;
+    app.add_flag("--no-scene-warnings", quietScene,
+                 "do not log the scene loader's warnings (the master's local clients: the master "
+                 "logged them already)");
     CLI11_PARSE(app, argc, argv);
+    options.sceneWarnings = !quietScene;
 
     spdlog::set_level(spdlog::level::from_str(logLevel));
     spdlog::set_pattern("[%H:%M:%S.%e] [client %P] [%l] %v");

@@ -5,6 +5,8 @@
 #include <spdlog/spdlog.h>
 #include <boost/asio/ip/address.hpp>
 
+#include "OpenPort.h"
+
 namespace igi {
 namespace {
 
@@ -50,10 +52,12 @@ void ClientRoster::listen(std::uint64_t seed, std::uint32_t maxTileResultBytes) 
     maxTileResultBytes_ = maxTileResultBytes;
     const tcp::endpoint endpoint(boost::asio::ip::make_address(options_.listenHost),
                                  options_.listenPort);
-    acceptor_.open(endpoint.protocol());
-    acceptor_.set_option(tcp::acceptor::reuse_address(true));
-    acceptor_.bind(endpoint);
-    acceptor_.listen();
+    openPort("--listen", options_.listenHost, options_.listenPort, [&] {
+        acceptor_.open(endpoint.protocol());
+        acceptor_.set_option(tcp::acceptor::reuse_address(true));
+        acceptor_.bind(endpoint);
+        acceptor_.listen();
+    });
     spdlog::info("listening on {}:{}", options_.listenHost, port());
     accept();
 }

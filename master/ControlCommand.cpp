@@ -51,13 +51,14 @@ SceneChange lightChange(const JsonNode& command, const Scene& scene, const Scene
         return QuadLightChange{light.index,
                                changed(command, current.quadLights.at(light.index), kNamedKeys)};
     }
-    return PunctualLightChange{light.index,
-                            changed(command, current.punctualLights.at(light.index), kNamedKeys)};
+    return PunctualLightChange{
+        light.index, changed(command, current.punctualLights.at(light.index), kNamedKeys)};
 }
 
 // Every material of the name changes; each keeps its own values for what is not given.
 std::vector<SceneChange> materialChanges(const JsonNode& command, const Scene& scene,
-                                         const SceneState& current) {
+                                         const SceneState& current,
+                                         std::vector<std::string>& warnings) {
     const std::string name = nameOf(command);
     std::vector<SceneChange> changes;
     bool warned = false;
@@ -65,10 +66,10 @@ std::vector<SceneChange> materialChanges(const JsonNode& command, const Scene& s
         Material value = changed(command, current.materials.at(i), kNamedKeys);
         // As the scene loader does with material overrides: scale down, with a warning.
         if (scaleToConserveEnergy(value) && !warned) {
-            spdlog::warn(
-                "{}: material '{}': diffuse + specular reflects more than all the "
-                "light: scaled down",
-                kControlCommandFile, name);
+            warnings.push_back("material '" + name +
+                               "': diffuse + specular reflects more than all the light: scaled "
+                               "down");
+            spdlog::warn("{}: {}", kControlCommandFile, warnings.back());
             warned = true;
         }
         changes.push_back(MaterialChange{i, value});
@@ -96,7 +97,7 @@ ControlRequest parseControlCommand(const std::string& line, const Scene& scene,
     } else if (cmd == "light") {
         request.changes.push_back(lightChange(command, scene, current));
     } else if (cmd == "material") {
-        request.changes = materialChanges(command, scene, current);
+        request.changes = materialChanges(command, scene, current, request.warnings);
     } else if (cmd == "snapshot") {
         command.checkKeys({"cmd", "path"});
         request.kind = ControlRequest::Kind::Snapshot;

@@ -22,6 +22,9 @@ struct ControlRequest {
     std::string path;
     float x = 0, y = 0;  ///< for Pick: the image position, pixels from the top-left corner
     float exposure = 0;  ///< for Exposure: stops
+    /// What the command changed beyond what it said (a material scaled down), for the reply:
+    /// the one who sent it may not see the master's log.
+    std::vector<std::string> warnings;
 };
 
 /// Exposures a command may set, in stops (beyond them an image is all black or all white).

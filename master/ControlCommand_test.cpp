@@ -136,6 +136,11 @@ TEST(ControlCommand, AMaterialReflectingTooMuchIsScaledDown) {
         parse(R"({"cmd":"material","name":"red","type":"mirror","specular":0.9})");
     const Material m = std::get<MaterialChange>(r.changes.at(0)).value;
     EXPECT_NEAR(m.diffuse.x + m.specular.x, 1.0f, 1e-5f);  // 0.63 + 0.9 scaled down
+    // Issue 40: said in the reply too, not only in the master's log.
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_EQ(r.warnings[0],
+              "material 'red': diffuse + specular reflects more than all the light: scaled down");
+    EXPECT_TRUE(parse(R"({"cmd":"material","name":"red","specular":0.1})").warnings.empty());
 }
 
 TEST(ControlCommand, AppliedChangesGiveTheCommandedState) {

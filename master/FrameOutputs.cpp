@@ -7,6 +7,7 @@
 #include <boost/asio/ip/address.hpp>
 #include <boost/asio/post.hpp>
 
+#include "OpenPort.h"
 #include "SequencePath.h"
 #include "ViewPage.h"
 #include "image/ImageIO.h"
@@ -49,8 +50,10 @@ void FrameOutputs::writeFrameImages(std::uint32_t frame) {
             nlohmann::json answer{{"ok", true}, {"path", path}, {"frame", frame}};
             try {
                 writeImage(path, *image, exposure);
+                spdlog::info("snapshot of frame {} written to {}", frame, path);
             } catch (const std::exception& e) {
                 answer = {{"ok", false}, {"error", e.what()}};
+                spdlog::warn("snapshot of frame {} failed: {}", frame, e.what());
             }
             boost::asio::post(io_, [reply, text = answer.dump()] { reply(text); });
         });
@@ -59,6 +62,9 @@ void FrameOutputs::writeFrameImages(std::uint32_t frame) {
 
 void FrameOutputs::snapshot(std::string path, ControlServer::Reply reply, std::uint32_t fromFrame) {
     if (path.empty()) path = defaultSnapshotPath();
+    // Relative to the master's folder, which the one asking may not know: the reply and the
+    // log give the whole path.
+    path = std::filesystem::absolute(path).lexically_normal().string();
     snapshots_.push_back({std::move(path), std::move(reply), fromFrame});
 }
 
@@ -83,11 +89,18 @@ void FrameOutputs::close() {
                 .dump());
 }
 
-void FrameOutputs::writeOutputs() const {
+bool FrameOutputs::writeOutputs() const {
+    bool all = true;
     for (const auto& path : options_.outputs) {
-        writeImage(path, compositor_.shown(), image_.exposure);
-        spdlog::info("wrote {}", path.string());
+        try {
+            writeImage(path, compositor_.shown(), image_.exposure);
+            spdlog::info("wrote {}", path.string());
+        } catch (const std::exception& e) {
+            spdlog::error("--output {}: {}", path.string(), e.what());
+            all = false;
+        }
     }
+    return all;
 }
 
 void FrameOutputs::startView(ControlServer::Handler handler) {
@@ -100,7 +113,9 @@ void FrameOutputs::startView(ControlServer::Handler handler) {
     const bool loopback = boost::asio::ip::make_address(o.host).is_loopback();
     if (!loopback) o.token = net::ClusterKey::randomSecret().substr(0, 32);
     const std::string token = o.token;
-    view_ = std::make_unique<ViewServer>(io_, std::move(o), std::move(handler));
+    view_ = openPort("--view", options_.viewHost, options_.viewPort, [&] {
+        return std::make_unique<ViewServer>(io_, std::move(o), std::move(handler));
+    });
     if (loopback)
         spdlog::info("view on http://{}:{}/", options_.viewHost, view_->port());
     else

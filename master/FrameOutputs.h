@@ -44,8 +44,9 @@ class FrameOutputs {
     void snapshot(std::string path, ControlServer::Reply reply, std::uint32_t fromFrame);
     /// The session ends: the view closes, snapshots still waiting are answered.
     void close();
-    /// Writes the compositor's image to every --output.
-    void writeOutputs() const;
+    /// Writes the compositor's image to every --output; one that fails (logged) does not stop
+    /// the others. Returns whether all were written.
+    bool writeOutputs() const;
 
   private:
     struct ViewFrame {

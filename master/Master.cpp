@@ -7,6 +7,10 @@
 #include <boost/asio/post.hpp>
 
 #include "Codec.h"
+#include "ImageSize.h"
+#include "OpenPort.h"
+#include "OptionWarnings.h"
+#include "RenderFlags.h"
 #include "render/Tile.h"
 #include "scene/RenderSettingsJson.h"
 #include "scene/SceneError.h"
@@ -55,6 +59,23 @@ double secondsSince(Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
+// How the scene is lit, when that is not the scene's own lights: a black image must not come
+// as a surprise.
+void reportLighting(const Scene& scene, const MasterOptions& o) {
+    if (sceneHasHeadlight(scene)) {
+        const std::string ext = o.scene.extension().string();
+        spdlog::info("a headlight at the camera lights the scene ({})",
+                     o.headlight      ? "--headlight"
+                     : ext != ".json" ? "nothing in the model emits light"
+                                      : "the scene file asks for it");
+    } else if (!sceneHasEmitter(scene)) {
+        spdlog::warn(
+            "scene {} has no light (no lights, environment or emissive material): the image "
+            "will be black; --headlight adds a light at the camera",
+            o.scene.string());
+    }
+}
+
 }  // namespace
 
 Master::Master(MasterOptions options)
@@ -73,19 +94,31 @@ void Master::loadScene() {
     SceneBundle bundle;
     SceneLoadOptions loadOptions;
     loadOptions.allowOutsidePaths = options_.allowOutsidePaths;
+    loadOptions.headlight = options_.headlight;
     scene_ = loadSceneFile(options_.scene, &bundle, loadOptions);
-    applyRenderSettingsJson(nlohmann::json::parse(options_.renderOverridesJson), scene_.render,
-                            "command line", "/render");
-    if (options_.width > 0) scene_.image.width = options_.width;
-    if (options_.height > 0) scene_.image.height = options_.height;
+    reportLighting(scene_, options_);
+    const nlohmann::json overrides = nlohmann::json::parse(options_.renderOverridesJson);
+    try {
+        applyRenderSettingsJson(overrides, scene_.render, "command line", "/render");
+    } catch (const SceneError& e) {
+        throw std::invalid_argument(commandLineMessage(e));  // names the flag, not the key
+    }
+    for (const std::string& warning : uselessOptionWarnings(options_, overrides, scene_.render))
+        spdlog::warn("{}", warning);
+    const ImageSize size = overriddenImageSize({scene_.image.width, scene_.image.height},
+                                               options_.width, options_.height);
+    scene_.image.width = size.width;
+    scene_.image.height = size.height;
     if (options_.exposureSet) scene_.image.exposure = options_.exposure;
     sceneData_.bundle = std::move(bundle);
     sceneData_.settings = scene_.render;
     sceneData_.image = scene_.image;
     sceneData_.camera = scene_.camera;
     std::unique_ptr<Animation> animation;
-    if (!options_.animation.empty())
+    if (!options_.animation.empty()) {
         animation = std::make_unique<Animation>(Animation::load(options_.animation, scene_));
+        fitFramesToAnimation(*animation);
+    }
     timeline_ = std::make_unique<SceneTimeline>(SceneState::of(scene_), std::move(animation),
                                                 joinHistoryDepth(scene_.render));
 
@@ -99,11 +132,26 @@ void Master::loadScene() {
         std::clamp<std::size_t>(kOpenFrameBufferBudget / frameBytes, 2, kFramesInFlight));
     compositor_ =
         std::make_unique<FrameCompositor>(scene_.image.width, scene_.image.height, s, pool_);
-    spdlog::info(
-        "scene {}: {} meshes, {} materials, {}x{} pixels, {} tiles per frame, {} integrator",
-        options_.scene.string(), scene_.meshes.size(), scene_.materials.size(), scene_.image.width,
-        scene_.image.height, scheduler_->layout().size(),
-        s.integrator == IntegratorKind::Path ? "path" : "IGI");
+    spdlog::info("scene {}: {} meshes, {} materials, {}x{} pixels, {} tiles per frame, {}",
+                 options_.scene.string(), scene_.meshes.size(), scene_.materials.size(),
+                 scene_.image.width, scene_.image.height, scheduler_->layout().size(),
+                 s.integrator == IntegratorKind::Path
+                     ? fmt::format("path tracer, {} samples per pixel", s.pathSamples)
+                     : fmt::format("IGI integrator, GI mode {}", giModeName(s.gi)));
+}
+
+void Master::fitFramesToAnimation(const Animation& animation) {
+    const int length = int(animation.lastKeyFrame()) + 1;
+    if (!options_.framesGiven) {
+        // One frame of a 32-frame animation is never what was meant.
+        options_.frames = length;
+        if (progress_) progress_->setTotalFrames(length);
+        spdlog::info("--animation {}: rendering its {} frames (0 to its last keyframe {})",
+                     options_.animation.string(), length, length - 1);
+    } else if (options_.frames > 0 && options_.frames < length) {
+        spdlog::warn("--frames {} stops before the end of --animation {}: its last keyframe is {}",
+                     options_.frames, options_.animation.string(), length - 1);
+    }
 }
 
 void Master::onWelcomed(ConnectedClient& c) {
@@ -330,8 +378,13 @@ void Master::onComposited(std::uint32_t f, double seconds) {
     noteShown(f);
     stats_.noteFrameDone(secondsSince(created_));
     // On a terminal the progress line says it; the frame lines are for logs and the curious.
-    spdlog::log(progress_ ? spdlog::level::debug : spdlog::level::info, "{}",
-                stats_.summaryLine(f));
+    // A live session there has no progress line: a line a second, saying what it left out.
+    const bool paced = options_.paceFrameLines && !progress_;
+    const bool logged = !progress_ && (!paced || framePace_.due(secondsSince(created_)));
+    spdlog::log(logged ? spdlog::level::info : spdlog::level::debug, "{}{}", stats_.summaryLine(f),
+                paced && logged && framePace_.skippedBefore() > 0
+                    ? fmt::format(" ({} frames since the last line)", framePace_.skippedBefore())
+                    : "");
     if (progress_) progress_->update(int(f + 1), stats_.recentFps(), roster_->readyCount());
     outputs_->writeFrameImages(f);
     publishToView(f);
@@ -393,6 +446,7 @@ void Master::scheduleTick() {
         // Heartbeats keep idle clients' read timeouts from firing; the tick also lets idle
         // clients pick up copies of tiles that have been out too long.
         if (++ticks_ % 50 == 0) roster_->sendHeartbeats();
+        stats_.noteTime(secondsSince(created_));  // igi-ctl status's rates
         dispatch();
         scheduleTick();
     });
@@ -438,16 +492,20 @@ int Master::run() {
                                                        options_, scene_, *timeline_, stats_,
                                                        *roster_, *compositor_, *outputs_, created_);
     roster_->listen(scene_.render.seed, maxTileResultBytes());
-    const ControlServer::Handler onCommand = [this](const std::string& line,
-                                                    ControlServer::Reply reply) {
-        sessionControl_->handle(line, std::move(reply));
-    };
     if (options_.control) {
-        control_ = std::make_unique<ControlServer>(io_, options_.controlHost, options_.controlPort,
-                                                   onCommand);
+        control_ = openPort("--control", options_.controlHost, options_.controlPort, [&] {
+            return std::make_unique<ControlServer>(
+                io_, options_.controlHost, options_.controlPort,
+                [this](const std::string& line, ControlServer::Reply reply) {
+                    sessionControl_->handle(line, std::move(reply), "igi-ctl");
+                });
+        });
         spdlog::info("control commands on {}:{}", options_.controlHost, control_->port());
     }
-    if (options_.view) outputs_->startView(onCommand);
+    if (options_.view)
+        outputs_->startView([this](const std::string& line, ControlServer::Reply reply) {
+            sessionControl_->handle(line, std::move(reply), "view");
+        });
     signals_.async_wait([this](const boost::system::error_code& ec, int signal) {
         if (ec) return;
         spdlog::warn("signal {}: ending the session after {} frames", signal, nextFrameToFinish_);
@@ -469,9 +527,11 @@ int Master::run() {
     if (progress_) progress_->finish();
     if (exitCode_ != 0) return exitCode_;
 
-    outputs_->writeOutputs();
+    // One output that cannot be written (its disk full since the start) must not cost the
+    // others theirs.
+    const bool written = outputs_->writeOutputs();
     writeStatistics();
-    return 0;
+    return written ? 0 : 1;
 }
 
 void Master::startLocalClients() {
@@ -486,6 +546,8 @@ void Master::startLocalClients() {
                                      "--threads",   std::to_string(threads),
                                      "--log-level", options_.clientLogLevel};
     if (options_.replayClients) args.push_back("--replay");
+    // They load the scene this master loaded and logged: one warning once, not N + 1 times.
+    args.push_back("--no-scene-warnings");
     // They belong to this session: when it ends or this master dies, they go too.
     args.insert(args.end(), {"--reconnect-seconds", "0"});
     std::vector<std::string> environment;
@@ -505,14 +567,25 @@ void Master::writeStatistics() const {
     const double end = std::chrono::duration<double>(renderEnd_ - created_).count();
     spdlog::info("{} frames in {:.2f} s: {:.2f} fps", nextFrameToFinish_, end - start,
                  stats_.fps(end - start));
-    if (options_.statsJson.empty()) return;
-    stats_.writeJson(
-        options_.statsJson,
-        {{"scene", options_.scene.string()},
-         {"width", std::to_string(scene_.image.width)},
-         {"height", std::to_string(scene_.image.height)},
-         {"integrator", scene_.render.integrator == IntegratorKind::Path ? "path" : "igi"}},
-        start, end);
+    if (!options_.statsJson.empty())
+        stats_.writeJson(options_.statsJson, sessionJson(), start, end);
+}
+
+nlohmann::json Master::sessionJson() const {
+    // Every setting that shaped the run, so that two runs' statistics can be told apart.
+    const RenderSettings& s = scene_.render;
+    return {{"scene", options_.scene.string()},
+            {"width", scene_.image.width},
+            {"height", scene_.image.height},
+            {"exposure", scene_.image.exposure},
+            {"integrator", s.integrator == IntegratorKind::Path ? "path" : "igi"},
+            {"gi", giModeName(s.gi)},
+            {"seed", s.seed},
+            {"frames", options_.frames},
+            {"animation", options_.animation.string()},
+            {"local_clients", options_.localClients},
+            {"remote_clients", options_.remoteClients},
+            {"render", renderSettingsJson(s)}};
 }
 
 std::uint32_t Master::maxTileResultBytes() const {

@@ -16,6 +16,7 @@
 #include "CodedFrame.h"
 #include "ControlServer.h"
 #include "FrameCompositor.h"
+#include "FrameLogPace.h"
 #include "FrameOutputs.h"
 #include "LocalClients.h"
 #include "MasterOptions.h"
@@ -63,6 +64,10 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     };
 
     void loadScene();
+    /// Without --frames, an animation runs to its last keyframe; a shorter --frames is warned.
+    void fitFramesToAnimation(const Animation& animation);
+    /// The run's settings, for --stats-json.
+    nlohmann::json sessionJson() const;
     std::uint32_t maxTileResultBytes() const;
     void startControl();
     void startLocalClients();
@@ -113,6 +118,7 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     std::unique_ptr<SessionControl> sessionControl_;
     std::unique_ptr<ControlServer> control_;
     std::shared_ptr<ProgressLine> progress_;
+    FrameLogPace framePace_;  ///< with options_.paceFrameLines
     boost::asio::signal_set signals_;
     std::int64_t compositedEpoch_ = -1;  ///< epoch of the frame last composited
     std::int64_t openedEpoch_ = -1;      ///< epoch of the frame last opened

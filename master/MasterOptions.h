@@ -11,7 +11,9 @@ namespace igi {
 struct MasterOptions {
     std::filesystem::path scene;
     std::vector<std::filesystem::path> outputs;  ///< .png and/or .exr, written at the end
-    int frames = 1;                   ///< 0: until stopped (control "stop", SIGINT or SIGTERM)
+    int frames = 1;  ///< 0: until stopped (control "stop", SIGINT or SIGTERM)
+    /// --frames was given; without it, an --animation runs to its last keyframe.
+    bool framesGiven = false;
     std::filesystem::path animation;  ///< keyframes applied frame by frame (docs/ANIMATION.md)
     std::string outputSequence;       ///< e.g. out/frame_%04d.png: every frame's image
     /// Only these frames (0-based) of the sequence, when not empty (benchmarks that need the
@@ -30,9 +32,10 @@ struct MasterOptions {
     std::filesystem::path statsJson;
     /// Scene files may name files outside the scene file's folder (docs/SCENE_FORMAT.md).
     bool allowOutsidePaths = false;
-    unsigned threads = 0;                 ///< master threads (0: every hardware thread)
-    unsigned clientThreads = 0;           ///< threads of each local client (0: share the machine)
-    double waitSeconds = 60;              ///< for the clients to connect and build the scene
+    bool headlight = false;      ///< a light at the camera, beside the scene's own (--headlight)
+    unsigned threads = 0;        ///< master threads (0: every hardware thread)
+    unsigned clientThreads = 0;  ///< threads of each local client (0: share the machine)
+    double waitSeconds = 60;     ///< for the clients to connect and build the scene
     double readTimeoutSeconds = 30;       ///< a client silent this long is dropped
     std::string clientLogLevel = "info";  ///< passed to local clients
     std::filesystem::path secretFile;     ///< the cluster secret (else IGI_SECRET, else see below)
@@ -42,6 +45,8 @@ struct MasterOptions {
     int maxClients = 64;           ///< connections beyond this are turned away
     double handshakeSeconds = 10;  ///< a connection must prove itself within this
     bool replayClients = false;    ///< local clients replay recorded tiles (igi-client --replay)
+    /// A live session on a terminal: one frame line a second, not one a frame (FrameLogPace).
+    bool paceFrameLines = false;
     /// Render settings from the command line, as a JSON object in the scene file's "render"
     /// syntax (so both are validated the same way), plus image overrides.
     std::string renderOverridesJson = "{}";

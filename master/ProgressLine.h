@@ -23,6 +23,8 @@ class ProgressLine {
 
     explicit ProgressLine(int totalFrames, std::shared_ptr<ProgressSink> sink);
     void update(int framesDone, double fps, int clients);
+    /// The run's length, once known (an --animation without --frames runs to its end).
+    void setTotalFrames(int totalFrames) { totalFrames_ = totalFrames; }
     /// Leaves the last state on its own line.
     void finish();
 

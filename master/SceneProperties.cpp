@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "scene/JsonReader.h"
+#include "scene/KeySuggestion.h"
 #include "scene/SceneError.h"
 
 namespace igi {
@@ -137,8 +138,9 @@ void checkKeys(const JsonNode& node, const std::vector<std::string>& allowed) {
         if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
         std::string list;
         for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        throw SceneError::atPath(node.file(), node.path() + "/" + jsonPointerEscape(key),
-                                 "unknown key (expected one of: " + list + ")");
+        throw SceneError::atPath(
+            node.file(), node.path() + "/" + jsonPointerEscape(key),
+            "unknown key (expected one of: " + list + ")" + didYouMean(key, allowed));
     }
 }
 

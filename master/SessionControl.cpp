@@ -60,8 +60,10 @@ SessionControl::SessionControl(Frames& frames, const MasterOptions& options, Sce
       outputs_(outputs),
       created_(created) {}
 
-void SessionControl::handle(const std::string& line, ControlServer::Reply reply) {
+void SessionControl::handle(const std::string& line, ControlServer::Reply reply, const char* from) {
     auto error = [&](const std::string& what) {
+        spdlog::log(std::string(from) == "view" ? spdlog::level::debug : spdlog::level::warn,
+                    "{} command refused: {}", from, what);
         reply(nlohmann::json{{"ok", false}, {"error", what}}.dump());
     };
     ControlRequest request;
@@ -70,6 +72,13 @@ void SessionControl::handle(const std::string& line, ControlServer::Reply reply)
     } catch (const std::exception& e) {
         return error(e.what());
     }
+    // What changed a session, and when, belongs in its log; the queries that scripts and the
+    // view repeat do not.
+    const bool query = request.kind == ControlRequest::Kind::Status ||
+                       request.kind == ControlRequest::Kind::Scene ||
+                       request.kind == ControlRequest::Kind::Pick;
+    spdlog::log(query || std::string(from) == "view" ? spdlog::level::debug : spdlog::level::info,
+                "{} command at frame {}: {}", from, frames_.nextFrame(), line);
     switch (request.kind) {
         case ControlRequest::Kind::Change:
             try {
@@ -77,10 +86,13 @@ void SessionControl::handle(const std::string& line, ControlServer::Reply reply)
             } catch (const std::exception& e) {
                 return error(e.what());
             }
-            return reply(nlohmann::json{{"ok", true},
-                                        {"changes", request.changes.size()},
-                                        {"from_frame", frames_.nextFrame()}}
-                             .dump());
+            {
+                nlohmann::json answer{{"ok", true},
+                                      {"changes", request.changes.size()},
+                                      {"from_frame", frames_.nextFrame()}};
+                if (!request.warnings.empty()) answer["warnings"] = request.warnings;
+                return reply(answer.dump());
+            }
         case ControlRequest::Kind::Status: {
             nlohmann::json status = statusJson();
             status["ok"] = true;

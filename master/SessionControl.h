@@ -40,8 +40,10 @@ class SessionControl {
                    const FrameCompositor& compositor, FrameOutputs& outputs,
                    std::chrono::steady_clock::time_point created);
 
-    /// Runs one command line and answers it (now, or for a snapshot when it is written).
-    void handle(const std::string& line, ControlServer::Reply reply);
+    /// Runs one command line from `from` ("igi-ctl" or "view") and answers it (now, or for a
+    /// snapshot when it is written). igi-ctl's changes are logged, the view's (a drag sends
+    /// dozens a second) only at debug level.
+    void handle(const std::string& line, ControlServer::Reply reply, const char* from);
     /// The session's state for `status` commands and the view's overlay.
     nlohmann::json statusJson();
     /// The scene's objects, lights and camera as control commands would set them.

@@ -63,27 +63,23 @@ double Statistics::recentFps() const {
     return span > 0 ? double(doneTimes_.size() - 1) / span : 0.0;
 }
 
-const Statistics::Rates& Statistics::sampleRates(double seconds) {
-    if (lastTotals_.seconds >= 0 && seconds - lastTotals_.seconds < kRateWindow) return rates_;
-    Totals now;
-    now.seconds = seconds;
+RecentRates::Totals Statistics::totals() const {
+    RecentRates::Totals t;
     for (const auto& [id, c] : clients_) {
-        now.rays[id] = c.rays;
-        now.tiles[id] = c.tiles;
-        now.bytes += c.bytes;
+        t.bytes += c.bytes;
+        if (c.left) continue;  // no rates for clients that are gone
+        t.rays[id] = c.rays;
+        t.tiles[id] = c.tiles;
     }
-    if (lastTotals_.seconds >= 0) {
-        const double dt = seconds - lastTotals_.seconds;
-        rates_ = {};
-        for (const auto& [id, c] : clients_) {
-            if (c.left) continue;
-            rates_.raysPerSecond[id] = double(now.rays[id] - lastTotals_.rays[id]) / dt;
-            rates_.tilesPerSecond[id] = double(now.tiles[id] - lastTotals_.tiles[id]) / dt;
-        }
-        rates_.wireBytesPerSecond = double(now.bytes - lastTotals_.bytes) / dt;
-    }
-    lastTotals_ = std::move(now);
-    return rates_;
+    return t;
+}
+
+void Statistics::noteTime(double seconds) {
+    recent_.sample(seconds, totals());
+}
+
+Statistics::Rates Statistics::sampleRates(double seconds) const {
+    return recent_.rates(seconds, totals());
 }
 
 double Statistics::fps(double totalSeconds) const {
@@ -107,9 +103,8 @@ std::string Statistics::summaryLine(std::uint32_t index) const {
         f.compositeSeconds * 1e3);
 }
 
-void Statistics::writeJson(const std::filesystem::path& path,
-                           const std::map<std::string, std::string>& session, double renderStart,
-                           double renderEnd) const {
+void Statistics::writeJson(const std::filesystem::path& path, const nlohmann::json& session,
+                           double renderStart, double renderEnd) const {
     const double totalSeconds = renderEnd - renderStart;
     nlohmann::json frames = nlohmann::json::array();
     for (const auto& [index, f] : frames_) {

@@ -8,7 +8,10 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "Messages.h"
+#include "RecentRates.h"
 #include "TileScheduler.h"
 
 namespace igi {
@@ -65,11 +68,10 @@ class Statistics {
     /// A tile of interleaving set k handed to a client.
     void noteAssignment(std::uint32_t frame, ClientId client, int k);
 
-    /// Writes {"frames": [...], "clients": [...], "fps": ..., "session": {...}}. Times are
+    /// Writes {"frames": [...], "clients": [...], "fps": ..., "session": session}. Times are
     /// seconds from the master's start; rendering ran from renderStart to renderEnd.
-    void writeJson(const std::filesystem::path& path,
-                   const std::map<std::string, std::string>& session, double renderStart,
-                   double renderEnd) const;
+    void writeJson(const std::filesystem::path& path, const nlohmann::json& session,
+                   double renderStart, double renderEnd) const;
     /// One line for people watching.
     std::string summaryLine(std::uint32_t frame) const;
     double fps(double totalSeconds) const;
@@ -78,28 +80,19 @@ class Statistics {
     /// Frames per second over the last few frames shown.
     double recentFps() const;
 
-    /// Rates over the time since the previous sample (taken at `seconds` from the master's
-    /// start), once at least kRateWindow seconds have passed; until then the previous rates.
-    struct Rates {
-        std::map<ClientId, double> raysPerSecond;
-        std::map<ClientId, double> tilesPerSecond;
-        double wireBytesPerSecond = 0;  ///< tile results received, all clients
-    };
-    const Rates& sampleRates(double seconds);
-    static constexpr double kRateWindow = 0.5;
+    /// Rates over the last half second (RecentRates), at `seconds` from the master's start.
+    using Rates = RecentRates::Rates;
+    Rates sampleRates(double seconds) const;
+    /// Called often (the master's tick): keeps the totals the rates are taken from.
+    void noteTime(double seconds);
 
   private:
     std::map<std::uint32_t, FrameStats> frames_;
     std::map<ClientId, ClientStats> clients_;
     std::map<std::uint32_t, std::uint64_t> vplSum_, photonSum_;
     std::deque<double> doneTimes_;  ///< when the last frames were shown
-    struct Totals {
-        std::map<ClientId, std::uint64_t> rays, tiles;
-        std::uint64_t bytes = 0;
-        double seconds = -1;
-    };
-    Totals lastTotals_;
-    Rates rates_;
+    RecentRates::Totals totals() const;
+    RecentRates recent_;
 };
 
 }  // namespace igi

@@ -6,10 +6,13 @@
 #include <boost/asio/ip/address.hpp>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
 #include <charconv>
 #include <cstdint>
 
 #include "Master.h"
+#include "OutputCheck.h"
 #include "ProgressLine.h"
 #include "SequencePath.h"
 #include "util/HostPort.h"
@@ -31,6 +34,21 @@ nlohmann::json parsePair(const std::string& text, const std::string& option) {
     } catch (const std::exception&) {
         throw CLI::ValidationError(option, "expected NxM, for example 3x3, got '" + text + "'");
     }
+}
+
+// Integer options: a fraction or an exponent is refused with one message and one exit code
+// (CLI11's own conversion error says "Could not convert" and exits with another).
+CLI::Validator wholeNumber() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            std::int64_t value = 0;
+            const char* end = text.data() + text.size();
+            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+            if (text.empty() || ec != std::errc() || ptr != end)
+                return "expected a whole number, got '" + text + "'";
+            return "";
+        },
+        "");
 }
 
 // A seed: all of 0 .. 2^64 - 1, digits only.
@@ -59,19 +77,25 @@ int main(int argc, char** argv) {
         ->required();
     app.add_flag("--allow-outside-paths", o.allowOutsidePaths,
                  "let the scene file name files outside its own folder (relative paths only)");
+    app.add_flag("--headlight", o.headlight,
+                 "add a light at the camera, beside the scene's own (a bare model without an "
+                 "emitter gets one anyway)");
     app.add_option("--output", outputs,
                    "image to write at the end (.png tone-mapped, .exr linear); repeatable");
-    app.add_option("--frames", o.frames,
-                   "frames to render (0: until stopped by igi-ctl stop or a signal)")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 1 << 24));
+    auto* framesOpt =
+        app.add_option("--frames", o.frames,
+                       "frames to render (0: until stopped by igi-ctl stop or a signal; "
+                       "default 1, or an --animation's length)")
+            ->check(wholeNumber())
+            ->check(CLI::Range(0, 1 << 24));
     app.add_option("--animation", o.animation,
                    "keyframed changes applied frame by frame (docs/ANIMATION.md)");
     app.add_option("--output-sequence", o.outputSequence,
                    "write every frame, e.g. out/frame_%04d.png (.png or .exr)");
     app.add_option("--sequence-frames", o.sequenceFrames,
                    "write only these frames (0-based, comma-separated) of --output-sequence")
-        ->delimiter(',');
+        ->delimiter(',')
+        ->check(wholeNumber());
     std::string control;
     auto* controlOpt =
         app.add_option("--control", control,
@@ -84,26 +108,35 @@ int main(int argc, char** argv) {
     app.add_option("--local-clients", o.localClients,
                    "igi-client processes to start on this machine")
         ->capture_default_str()
+        ->check(wholeNumber())
         ->check(CLI::Range(0, 256));
     app.add_option("--clients", o.remoteClients, "clients from anywhere to wait for")
         ->capture_default_str()
+        ->check(wholeNumber())
         ->check(CLI::Range(0, 4096));
     app.add_option("--listen", listen,
                    "HOST:PORT to accept clients on (default 127.0.0.1, any free port; "
                    "port 7878 when --clients is given)");
     app.add_option("--stats-json", o.statsJson, "write per-frame and per-client statistics here");
-    app.add_option("--threads", o.threads, "master threads (0: all)")->capture_default_str();
+    app.add_option("--threads", o.threads, "master threads (0: all)")
+        ->capture_default_str()
+        ->check(wholeNumber());
     app.add_option("--client-threads", o.clientThreads,
                    "threads per local client (0: share the cores)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(wholeNumber());
     app.add_option("--wait-seconds", o.waitSeconds, "how long to wait for the clients")
         ->capture_default_str();
     app.add_option("--read-timeout", o.readTimeoutSeconds,
                    "drop a client silent this long (seconds)")
         ->capture_default_str();
-    app.add_option("--width", o.width, "image width (overrides the scene)")
+    app.add_option("--width", o.width,
+                   "image width (overrides the scene; alone, the height keeps its aspect ratio)")
+        ->check(wholeNumber())
         ->check(CLI::Range(1, 16384));
-    app.add_option("--height", o.height, "image height (overrides the scene)")
+    app.add_option("--height", o.height,
+                   "image height (overrides the scene; alone, the width keeps its aspect ratio)")
+        ->check(wholeNumber())
         ->check(CLI::Range(1, 16384));
     auto* exposure = app.add_option("--exposure", o.exposure, "exposure of the PNG in stops");
     app.add_option("--log-level", logLevel, "trace, debug, info, warn, error, critical or off")
@@ -113,7 +146,6 @@ int main(int argc, char** argv) {
     // Render settings: same names, ranges and checks as the scene file's "render" section.
     nlohmann::json render = nlohmann::json::object();
     std::string integrator, interleave, filter;
-    int spp = 0;
     auto* integratorOpt = app.add_option("--integrator", integrator, "igi, or path (the reference)")
                               ->check(CLI::IsMember({"igi", "path"}));
     std::string gi;
@@ -140,7 +172,6 @@ int main(int argc, char** argv) {
                        "their estimated contribution there), or auto (importance from 8 emitters "
                        "on)")
             ->check(CLI::IsMember({"auto", "all", "importance"}));
-    auto* sppOpt = app.add_option("--spp", spp, "path tracer samples per pixel per frame");
     auto* interleaveOpt = app.add_option("--interleave", interleave, "interleaving pattern NxM");
     auto* filterOpt = app.add_option("--filter", filter, "discontinuity buffer size NxM");
     std::string converge, roulette, compensation, progressiveRadius, progressiveFilter,
@@ -183,6 +214,7 @@ int main(int argc, char** argv) {
         CLI::Option* option = nullptr;
     };
     std::vector<Numeric> numerics = {
+        {"--spp", "path_samples", true, "--integrator path: samples per pixel per frame"},
         {"--direct-samples", "direct_samples", true,
          "light samples per set (shadow rays per pixel)"},
         {"--vpl-paths", "vpl_paths", true, "light paths per set (0: from --indirect-vpls)"},
@@ -236,11 +268,15 @@ int main(int argc, char** argv) {
          "--gi photonmap: final gather rays per site"},
         {"--tile-size", "tile_size", true, "tile edge in pixels of one k"},
     };
-    for (auto& n : numerics) n.option = app.add_option(n.flag, n.value, n.help);
+    for (auto& n : numerics) {
+        n.option = app.add_option(n.flag, n.value, n.help);
+        if (n.integer) n.option->type_name("INT")->check(wholeNumber());
+    }
     // An integer of its own: through a double, seeds above 2^53 lost bits.
     std::string seedText;
-    auto* seedOpt = app.add_option("--seed", seedText,
-                                   "session seed of every random bit vector, 0 .. 2^64 - 1");
+    auto* seedOpt =
+        app.add_option("--seed", seedText, "session seed of every random bit vector, 0 .. 2^64 - 1")
+            ->type_name("INT");
     app.add_option(
         "--secret-file", o.secretFile,
         "the cluster secret (else the IGI_SECRET environment variable; with local clients only, "
@@ -248,6 +284,7 @@ int main(int argc, char** argv) {
     app.add_flag("--insecure", o.insecure, "no authentication at all (loopback only; for tests)");
     app.add_option("--max-clients", o.maxClients, "connections beyond this are turned away")
         ->capture_default_str()
+        ->check(wholeNumber())
         ->check(CLI::Range(1, 4096));
     app.add_option("--handshake-timeout", o.handshakeSeconds,
                    "seconds a new connection has to prove it holds the secret")
@@ -264,10 +301,16 @@ int main(int argc, char** argv) {
     // On a terminal, a finite run draws a progress line under the log (before the pattern is
     // set: it replaces the logger's sink).
     auto progress = igi::ProgressLine::attachIfTerminal(o.frames);
+    o.paceFrameLines = o.frames == 0 && isatty(STDERR_FILENO);
     spdlog::set_level(spdlog::level::from_str(logLevel));
     spdlog::set_pattern("[%H:%M:%S.%e] [master] [%l] %v");
     o.scene = scene;
-    o.clientLogLevel = logLevel;
+    o.framesGiven = framesOpt->count() > 0;
+    // Under a progress line, local clients' info lines (connected, ready, done: the master
+    // says as much) would cut into it; their warnings and errors still show.
+    o.clientLogLevel = progress && spdlog::level::from_str(logLevel) < spdlog::level::warn
+                           ? std::string("warn")
+                           : logLevel;
     for (const auto& out : outputs) o.outputs.emplace_back(out);
     o.exposureSet = exposure->count() > 0;
     try {
@@ -275,7 +318,6 @@ int main(int argc, char** argv) {
         if (giOpt->count()) render["gi"] = gi;
         if (lightSamplingOpt->count()) render["light_sampling"] = lightSampling;
         if (vplSamplingOpt->count()) render["vpl_sampling"] = vplSampling;
-        if (sppOpt->count()) render["path_samples"] = spp;
         if (interleaveOpt->count()) render["interleave"] = parsePair(interleave, "--interleave");
         if (filterOpt->count()) render["filter"] = parsePair(filter, "--filter");
         if (convergeOpt->count()) render["converge"] = converge == "on";
@@ -287,8 +329,6 @@ int main(int argc, char** argv) {
         if (photonmapCausticsOpt->count()) render["photonmap_caustics"] = photonmapCaustics;
         for (const auto& n : numerics) {
             if (!n.option->count()) continue;
-            if (n.integer && n.value != std::floor(n.value))
-                throw CLI::ValidationError(n.flag, "expected a whole number");
             if (n.integer)
                 render[n.key] = static_cast<std::int64_t>(n.value);
             else
@@ -334,7 +374,14 @@ int main(int argc, char** argv) {
                 throw std::invalid_argument("--view " + view + ": '" + hp.host +
                                             "' is not an IP address of this machine");
         }
-        if (!o.outputSequence.empty()) igi::checkSequencePattern(o.outputSequence);
+        // Every file the run will write, checked before the first frame: a mistake found
+        // after an hour of rendering costs the hour.
+        for (const auto& out : o.outputs) igi::checkImageOutput(out, "--output");
+        if (!o.outputSequence.empty()) {
+            igi::checkSequencePattern(o.outputSequence);
+            igi::checkImageOutput(igi::sequencePath(o.outputSequence, 0), "--output-sequence");
+        }
+        if (!o.statsJson.empty()) igi::checkWritableFolder(o.statsJson, "--stats-json");
     } catch (const std::invalid_argument& e) {
         spdlog::error("{}", e.what());
         return 2;

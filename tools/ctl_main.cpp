@@ -16,12 +16,25 @@
 
 namespace {
 
-// One property of a command: the flag, the JSON key, and how many numbers it takes (0: a word).
+// One property of a command: the flag, the JSON key, and how many numbers it takes (0: true
+// or false, -1: a word).
 struct Property {
     const char* flag;
     const char* key;
     int numbers;
 };
+
+// What --help shows a property takes: "X Y Z", or a colour's "R G B" (or one grey number).
+std::string typeName(const Property& p) {
+    const std::string key = p.key;
+    const bool colour = key == "intensity" || key == "irradiance" || key == "radiance" ||
+                        key == "diffuse" || key == "specular" || key == "transmittance" ||
+                        key == "emission";
+    if (p.numbers == 0) return "true|false";
+    if (p.numbers < 0) return "WORD";
+    if (p.numbers == 1) return "NUMBER";
+    return colour ? "R G B|GREY" : "X Y Z";
+}
 
 // A subcommand that changes something: its properties become keys of the JSON command.
 struct ChangeCommand {
@@ -42,12 +55,16 @@ std::unique_ptr<ChangeCommand> addChangeCommand(CLI::App& app, const char* comma
     c.numeric.reserve(properties.size());
     c.words.reserve(properties.size());
     for (const Property& p : properties) {
-        if (p.numbers == 0) {
+        if (p.numbers <= 0) {
             c.words.push_back({p, ""});
-            c.app->add_option(p.flag, c.words.back().second, p.key);
+            auto* option = c.app->add_option(p.flag, c.words.back().second, p.key);
+            option->type_name(typeName(p));
+            if (p.numbers == 0) option->check(CLI::IsMember({"true", "false"}));
         } else {
             c.numeric.push_back({p, {}});
-            c.app->add_option(p.flag, c.numeric.back().second, p.key)->expected(1, p.numbers);
+            c.app->add_option(p.flag, c.numeric.back().second, p.key)
+                ->expected(1, p.numbers)
+                ->type_name(typeName(p));
         }
     }
     return owned;
@@ -77,7 +94,15 @@ std::string exchange(const igi::HostPort& master, const std::string& line) {
     boost::asio::io_context io;
     boost::asio::ip::tcp::resolver resolver(io);
     boost::asio::ip::tcp::socket socket(io);
-    boost::asio::connect(socket, resolver.resolve(master.host, std::to_string(master.port)));
+    const std::string address = master.host + ":" + std::to_string(master.port);
+    try {
+        boost::asio::connect(socket, resolver.resolve(master.host, std::to_string(master.port)));
+    } catch (const boost::system::system_error& e) {
+        // "connect: Connection refused" alone does not say what was tried.
+        throw std::runtime_error("--connect " + address +
+                                 ": cannot reach the master: " + e.code().message() +
+                                 " (is igi-master running with --control " + address + "?)");
+    }
     boost::asio::write(socket, boost::asio::buffer(line + "\n"));
     boost::asio::streambuf buffer;
     boost::asio::read_until(socket, buffer, '\n');
@@ -101,6 +126,7 @@ void printTable(const nlohmann::json& status) {
 
 int main(int argc, char** argv) {
     CLI::App app{"igi-ctl: controls a running igi-master (started with --control HOST:PORT)"};
+    app.set_version_flag("--version", IGI_BUILD_ID, "print the build identity and exit");
     std::string connect = "127.0.0.1:7879";
     app.add_option("--connect", connect, "the master's control HOST:PORT")->capture_default_str();
     app.require_subcommand(1);
@@ -122,6 +148,8 @@ int main(int argc, char** argv) {
                                    {"--edge1", "edge1", 3},
                                    {"--edge2", "edge2", 3},
                                    {"--radiance", "radiance", 3},
+                                   {"--direction", "direction", 3},
+                                   {"--irradiance", "irradiance", 3},
                                    {"--on", "on", 0}});
     auto material =
         addChangeCommand(app, "material", "changes a material (every one of that name)", true,
@@ -133,7 +161,7 @@ int main(int argc, char** argv) {
                           {"--emission", "emission", 3},
                           {"--roughness", "roughness", 1},
                           {"--metallic", "metallic", 1},
-                          {"--type", "type", 0}});
+                          {"--type", "type", -1}});
     auto* status =
         app.add_subcommand("status", "frames done, epoch, accumulated frames, clients, fps");
     bool table = false;
@@ -141,10 +169,21 @@ int main(int argc, char** argv) {
                      "print lines for scripts instead of JSON: 'session FRAMES_DONE FRAMES_TOTAL "
                      "FPS CLIENTS', then 'client ADDRESS:PORT THREADS TILES_PER_S MRAYS_PER_S "
                      "HOSTNAME' for each");
+    auto* scene = app.add_subcommand("scene", "the scene's objects, lights and camera");
+    float pickX = 0, pickY = 0;
+    auto* pick = app.add_subcommand("pick", "the object under an image position");
+    pick->add_option("x", pickX, "pixels from the left")->required();
+    pick->add_option("y", pickY, "pixels from the top")->required();
+    float stops = 0;
+    auto* exposure = app.add_subcommand(
+        "exposure", "the display exposure of the view and of PNG images written from now on");
+    exposure->add_option("stops", stops, "in stops")->required();
     std::string snapshotPath;
-    auto* snapshot =
-        app.add_subcommand("snapshot", "writes the next frame to a file (.png or .exr)");
-    snapshot->add_option("path", snapshotPath)->required();
+    auto* snapshot = app.add_subcommand(
+        "snapshot",
+        "writes the next frame to a file (.png or .exr; without one, a new .exr beside the "
+        "master's --output or in out/); the reply gives its whole path");
+    snapshot->add_option("path", snapshotPath, "relative to the master's working folder");
     auto* stop = app.add_subcommand("stop", "ends the session (the master writes its outputs)");
     std::string raw;
     auto* send = app.add_subcommand("send", "sends a JSON command as it is");
@@ -157,7 +196,13 @@ int main(int argc, char** argv) {
     if (*light->app) command = toJson(*light, "light");
     if (*material->app) command = toJson(*material, "material");
     if (*status) command = {{"cmd", "status"}};
-    if (*snapshot) command = {{"cmd", "snapshot"}, {"path", snapshotPath}};
+    if (*scene) command = {{"cmd", "scene"}};
+    if (*pick) command = {{"cmd", "pick"}, {"x", pickX}, {"y", pickY}};
+    if (*exposure) command = {{"cmd", "exposure"}, {"stops", stops}};
+    if (*snapshot) {
+        command = {{"cmd", "snapshot"}};
+        if (!snapshotPath.empty()) command["path"] = snapshotPath;
+    }
     if (*stop) command = {{"cmd", "stop"}};
     try {
         const std::string line = *send ? raw : command.dump();

@@ -1,6 +1,7 @@
 #include "scene/GltfLoader.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -169,6 +170,21 @@ void checkBeforeParsing(const std::string& path, const std::string& json, SceneA
     }
 }
 
+// tinygltf's message for a missing buffer is "File not found : X.bin" and a newline: say it
+// in the form of every other scene error, as a missing image is said.
+[[noreturn]] void failToLoad(const std::string& path, std::string err) {
+    static const std::string notFound = "File not found : ";
+    if (err.rfind(notFound, 0) == 0) {
+        const std::size_t end = err.find('\n');
+        const std::string uri = err.substr(
+            notFound.size(), end == std::string::npos ? std::string::npos : end - notFound.size());
+        throw SceneError::inFile(path, "buffer '" + uri + "' not found or unreadable");
+    }
+    while (!err.empty() && std::isspace(static_cast<unsigned char>(err.back()))) err.pop_back();
+    std::replace(err.begin(), err.end(), '\n', ' ');
+    throw SceneError::inFile(path, "cannot load glTF: " + err);
+}
+
 tinygltf::Model parseGltf(const std::string& path, SceneAssets& assets) {
     FileSource& files = assets.files();
     const std::string bytes = files.read(path);
@@ -192,7 +208,7 @@ tinygltf::Model parseGltf(const std::string& path, SceneAssets& assets) {
                                                         static_cast<unsigned>(bytes.size()), "");
     // Also when tinygltf carried on (it only warns about images it cannot load).
     if (!ctx.refusal.empty()) throw SceneError::inFile(path, "cannot load glTF: " + ctx.refusal);
-    if (!ok) throw SceneError::inFile(path, "cannot load glTF: " + err);
+    if (!ok) failToLoad(path, err);
     if (!warn.empty()) spdlog::debug("{}: tinygltf: {}", path, warn);
     return model;
 }

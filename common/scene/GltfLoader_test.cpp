@@ -109,6 +109,19 @@ TEST(GltfLoader, MissingImageNamesIt) {
         << what;
 }
 
+// Issue 40: a missing .bin printed "cannot load glTF: File not found : X.bin" and a blank line.
+TEST(GltfLoader, MissingBufferNamesItInTheFileMessageForm) {
+    const std::string what = test::sceneErrorOf([] {
+        test::parseInline(
+            R"({"meshes": [{"file": "a/m.gltf"}], "camera": {"position": [0, 0, 1], "look_at": [0, 0, 0]}})",
+            {{"a/m.gltf", R"({"asset": {"version": "2.0"},
+                              "buffers": [{"uri": "gone.bin", "byteLength": 12}]})"}});
+    });
+    EXPECT_NE(what.find("a/m.gltf: buffer 'gone.bin' not found or unreadable"), std::string::npos)
+        << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+}
+
 TEST(GltfLoader, InvalidJsonIsAnErrorNamingTheFile) {
     const std::string what = test::sceneErrorOf([] {
         test::parseInline(R"({"meshes": [{"file": "m.gltf"}]})", {{"m.gltf", "{ not json"}});

@@ -4,6 +4,7 @@
 #include <limits>
 #include <sstream>
 
+#include "scene/KeySuggestion.h"
 #include "scene/SceneError.h"
 
 namespace igi {
@@ -123,8 +124,10 @@ void JsonNode::checkKeys(std::initializer_list<const char*> allowed) const {
         if (known) continue;
         std::string list;
         for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-        throw SceneError::atPath(file_, path_ + "/" + jsonPointerEscape(key),
-                                 "unknown key (expected one of: " + list + ")");
+        throw SceneError::atPath(
+            file_, path_ + "/" + jsonPointerEscape(key),
+            "unknown key (expected one of: " + list + ")" +
+                didYouMean(key, std::vector<std::string>(allowed.begin(), allowed.end())));
     }
 }
 

@@ -208,4 +208,72 @@ void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& setting
     settings = s;
 }
 
+namespace {
+
+const char* lightSamplingName(LightSampling s) {
+    return s == LightSampling::Auto ? "auto" : s == LightSampling::Power ? "power" : "tree";
+}
+
+const char* vplSamplingName(VplSampling s) {
+    return s == VplSampling::Auto ? "auto" : s == VplSampling::All ? "all" : "importance";
+}
+
+const char* compensationName(ClampCompensation c) {
+    return c == ClampCompensation::Off      ? "off"
+           : c == ClampCompensation::Shrink ? "shrink"
+                                            : "kollig-keller";
+}
+
+}  // namespace
+
+nlohmann::json renderSettingsJson(const RenderSettings& s) {
+    // Every key applyRenderSettingsJson reads but "converge", which only sets the others.
+    return {{"integrator", s.integrator == IntegratorKind::Path ? "path" : "igi"},
+            {"gi", giModeName(s.gi)},
+            {"stream_vsls", s.streamVsls},
+            {"stream_photons", s.streamPhotons},
+            {"stream_window", s.streamWindow},
+            {"spt_groups", s.sptGroups},
+            {"spt_paths", s.sptPaths},
+            {"spt_pilots", s.sptPilots},
+            {"spt_budget", s.sptBudget},
+            {"cache_spacing", s.cacheSpacing},
+            {"cache_radius", s.cacheRadius},
+            {"photonmap_groups", s.photonmapGroups},
+            {"photonmap_photons", s.photonmapPhotons},
+            {"photonmap_neighbours", s.photonmapNeighbours},
+            {"photonmap_gather", s.photonmapGather},
+            {"photonmap_caustics", s.photonmapScreenCaustics ? "screen" : "grid"},
+            {"interleave", {s.interleaveX, s.interleaveY}},
+            {"direct_samples", s.directSamples},
+            {"light_sampling", lightSamplingName(s.lightSampling)},
+            {"vpl_paths", s.vplPaths},
+            {"indirect_vpls", s.indirectVpls},
+            {"vpl_sampling", vplSamplingName(s.vplSampling)},
+            {"vpl_pool", s.vplPool},
+            {"max_light_path_length", s.maxLightPathLength},
+            {"clamp_distance", s.clampDistance},
+            {"caustic_photons", s.causticPhotons},
+            {"caustic_radius", s.causticRadius},
+            {"max_eye_depth", s.maxEyeDepth},
+            {"filter", {s.filterX, s.filterY}},
+            {"filter_depth_threshold", s.filterDepthThreshold},
+            {"filter_normal_threshold", s.filterNormalThreshold},
+            {"accumulate", s.accumulate},
+            {"path_samples", s.pathSamples},
+            {"max_path_length", s.maxPathLength},
+            {"tile_size", s.tileSize},
+            {"seed", s.seed},
+            {"roulette", s.roulette},
+            {"roulette_max_length", s.rouletteMaxLength},
+            {"clamp_compensation", compensationName(s.clampCompensation)},
+            {"indirect_caustic_photons", s.indirectCausticPhotons},
+            {"indirect_caustic_radius", s.indirectCausticRadius},
+            {"glossy_bound", s.glossyBound},
+            {"progressive_radius", s.progressiveRadius},
+            {"progressive_filter", s.progressiveFilter},
+            {"pool_caustics", s.poolCaustics},
+            {"progressive_alpha", s.progressiveAlpha}};
+}
+
 }  // namespace igi

@@ -18,4 +18,8 @@ namespace igi {
 void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& settings,
                              const std::string& file, const std::string& jsonPathPrefix);
 
+/// Every setting as a "render" section that applyRenderSettingsJson reads back to the same
+/// settings: what a run's statistics record of how it rendered.
+nlohmann::json renderSettingsJson(const RenderSettings& settings);
+
 }  // namespace igi

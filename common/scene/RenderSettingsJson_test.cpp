@@ -147,5 +147,34 @@ TEST(RenderSettingsJson, LargestSeed) {
     EXPECT_EQ(s.seed, 18446744073709551615ull);
 }
 
+// Issue 40: a run's statistics must say every setting that shaped it, readable back.
+TEST(RenderSettingsJson, EverySettingWrittenReadsBackTheSame) {
+    RenderSettings s;
+    s.integrator = IntegratorKind::Path;
+    s.gi = GiMode::PhotonMap;
+    s.interleaveX = 4;
+    s.filterY = 5;
+    s.lightSampling = LightSampling::Tree;
+    s.vplSampling = VplSampling::Importance;
+    s.clampCompensation = ClampCompensation::Shrink;
+    s.clampDistance = 0.0123f;
+    s.progressiveAlpha = 0.3f;
+    s.photonmapScreenCaustics = false;
+    s.accumulate = false;
+    s.roulette = false;
+    s.seed = 18446744073709551615ull;
+    s.sptPaths = 9;
+    s.sptPilots = 7;
+    const nlohmann::json j = renderSettingsJson(s);
+    EXPECT_TRUE(j["seed"].is_number_unsigned());
+    EXPECT_EQ(j["gi"], "photonmap");
+    RenderSettings back;
+    applyRenderSettingsJson(nlohmann::json::parse(j.dump()), back, "stats.json", "/render");
+    EXPECT_EQ(back, s);
+    RenderSettings defaults;
+    applyRenderSettingsJson(renderSettingsJson(RenderSettings{}), defaults, "f", "");
+    EXPECT_EQ(defaults, RenderSettings{});
+}
+
 }  // namespace
 }  // namespace igi

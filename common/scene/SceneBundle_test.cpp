@@ -122,6 +122,34 @@ TEST(SceneLoader, BareGltfIsAScene) {
     expectRoundTrip(plain);
 }
 
+// Issue 40 (igi-master --headlight): a headlight beside the scene's own lights, the same on
+// every client; and a scene's lights are known, lit or not.
+TEST(SceneLoader, AHeadlightOnRequestReachesTheClientsToo) {
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("igi-headlight-" + std::to_string(getpid()));
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "box.obj") << "v -1 0 -1\nv 1 0 -1\nv 0 0 1\nf 1 3 2\n";
+    std::ofstream(dir / "scene.json") << R"({"meshes": [{"file": "box.obj"}],
+        "lights": [{"type": "point", "position": [0, 2, 0], "intensity": [1, 1, 1]}]})";
+    SceneLoadOptions options;
+    options.headlight = true;
+    SceneBundle bundle;
+    const Scene lit = loadSceneFile(dir / "scene.json", &bundle, options);
+    EXPECT_TRUE(sceneHasHeadlight(lit));
+    EXPECT_EQ(lit.punctualLights.size(), 2u);
+    EXPECT_TRUE(sceneHasHeadlight(loadSceneBundle(bundle)));
+    expectRoundTrip(dir / "scene.json", options);
+    EXPECT_FALSE(sceneHasHeadlight(loadSceneFile(dir / "scene.json")));
+    EXPECT_TRUE(sceneHasEmitter(loadSceneFile(dir / "scene.json")));
+
+    std::ofstream(dir / "dark.json") << R"({"meshes": [{"file": "box.obj"}], "lights": []})";
+    EXPECT_FALSE(sceneHasEmitter(loadSceneFile(dir / "dark.json")));
+    // A bare model without an emitter has one already: not a second.
+    const Scene plain = loadSceneFile(test::testdataDir() / "gltf" / "plain.gltf", options);
+    EXPECT_EQ(plain.punctualLights.size(), 1u);
+    std::filesystem::remove_all(dir);
+}
+
 /// `text` read whole from `path`.
 std::string readAll(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);

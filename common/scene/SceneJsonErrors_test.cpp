@@ -50,6 +50,23 @@ TEST(SceneJsonErrors, UnknownKeyNamesItsPathAndTheAllowedKeys) {
                     "/render/sed: unknown key");
 }
 
+// Issue 40: an unknown key close to a known one (or another program's name for it) says
+// which it probably is.
+TEST(SceneJsonErrors, UnknownKeySuggestsTheKnownOneMeant) {
+    EXPECT_CONTAINS(sceneErrorOf([] { parseInline(withLight(R"("render": {"spp": 4})")); }),
+                    "/render/spp: unknown key (expected one of: ");
+    EXPECT_CONTAINS(sceneErrorOf([] { parseInline(withLight(R"("render": {"spp": 4})")); }),
+                    "; did you mean 'path_samples'?");
+    EXPECT_CONTAINS(sceneErrorOf([] {
+                        parseInline(R"({"meshes": [{"file": "t.obj", "transfrom": {}}]})",
+                                    triangleFiles());
+                    }),
+                    "did you mean 'transform'?");
+    const std::string far =
+        sceneErrorOf([] { parseInline(withLight(R"("render": {"banana": 1})")); });
+    EXPECT_EQ(far.find("did you mean"), std::string::npos) << far;
+}
+
 TEST(SceneJsonErrors, OverflowingNumbersAreRejected) {
     EXPECT_CONTAINS(sceneErrorOf([] {
                         parseInline(R"({"image": {"width": 10, "height": 10,

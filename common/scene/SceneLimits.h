@@ -52,6 +52,9 @@ struct SceneLoadOptions {
     /// it through a symbolic link are refused unless this is set (igi-master's
     /// --allow-outside-paths). Only for scene files you trust.
     bool allowOutsidePaths = false;
+    /// Light the scene with a headlight at the camera even when it has lights of its own
+    /// (igi-master --headlight); the bundle's scene text says so, for the clients.
+    bool headlight = false;
     SceneLimits limits;
 };
 

@@ -37,13 +37,6 @@ std::string meshSceneText(const std::string& meshName, bool headlight) {
     return scene.dump(2) + "\n";
 }
 
-bool hasEmitter(const Scene& scene) {
-    if (!scene.quadLights.empty() || !scene.punctualLights.empty() || scene.environment.present())
-        return true;
-    return std::any_of(scene.materials.begin(), scene.materials.end(),
-                       [](const Material& m) { return m.isEmissive(); });
-}
-
 // Errors name files relative to the scene file's folder; the user typed a path relative to
 // their working directory, so report it that way.
 SceneError relativeToUser(const SceneError& e, const fs::path& folder) {
@@ -66,7 +59,7 @@ Scene loadFromDisk(const fs::path& path, SceneBundle& bundle, const SceneLoadOpt
         scene = parseScene(bundle.sceneText, name, disk, options.limits);
         // The headlight depends on the materials, known only now: add it as parseScene would
         // for the text that says so, and ship that text.
-        if (!hasEmitter(scene)) {
+        if (!sceneHasEmitter(scene)) {
             bundle.sceneText = meshSceneText(name, true);
             addHeadlight(scene);
         }
@@ -74,12 +67,32 @@ Scene loadFromDisk(const fs::path& path, SceneBundle& bundle, const SceneLoadOpt
         throw SceneError::inFile(path.string(), "unsupported scene file type '" + ext +
                                                     "' (expected .json, .obj, .gltf or .glb)");
     }
+    if (options.headlight && !sceneHasHeadlight(scene)) {
+        // Said in the text the clients parse, so that each adds the same light, last, as
+        // parseScene does for "headlight": true.
+        nlohmann::ordered_json text = nlohmann::ordered_json::parse(bundle.sceneText);
+        text["headlight"] = true;
+        bundle.sceneText = text.dump(2) + "\n";
+        addHeadlight(scene);
+    }
     bundle.sceneName = name;
     bundle.files = disk.filesRead();
     return scene;
 }
 
 }  // namespace
+
+bool sceneHasEmitter(const Scene& scene) {
+    if (!scene.quadLights.empty() || !scene.punctualLights.empty() || scene.environment.present())
+        return true;
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [](const Material& m) { return m.isEmissive(); });
+}
+
+bool sceneHasHeadlight(const Scene& scene) {
+    return std::any_of(scene.punctualLights.begin(), scene.punctualLights.end(),
+                       [](const PunctualLight& l) { return l.name == "headlight"; });
+}
 
 Scene loadSceneFile(const std::filesystem::path& path, SceneBundle* bundle,
                     const SceneLoadOptions& options) {

@@ -34,6 +34,12 @@ Scene loadSceneFile(const std::filesystem::path& path, SceneBundle* bundle = nul
 /// The same, without the bundle.
 Scene loadSceneFile(const std::filesystem::path& path, const SceneLoadOptions& options);
 
+/// Whether anything in the scene gives light: a light, an environment or an emissive material.
+bool sceneHasEmitter(const Scene& scene);
+/// Whether the scene has the headlight that "headlight": true (or a bare model without an
+/// emitter, or SceneLoadOptions::headlight) adds at the camera.
+bool sceneHasHeadlight(const Scene& scene);
+
 /// Rebuilds a scene from a bundle received from the master. Refuses file names that are
 /// empty, absolute or contain a NUL byte, and anything beyond `limits`.
 Scene loadSceneBundle(const SceneBundle& bundle, const SceneLimits& limits = {});
