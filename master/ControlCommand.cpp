@@ -51,8 +51,12 @@ SceneChange lightChange(const JsonNode& command, const Scene& scene, const Scene
         return QuadLightChange{light.index,
                                changed(command, current.quadLights.at(light.index), kNamedKeys)};
     }
-    return PunctualLightChange{light.index,
-                            changed(command, current.punctualLights.at(light.index), kNamedKeys)};
+    return PunctualLightChange{
+        light.index, changed(command, current.punctualLights.at(light.index), kNamedKeys)};
+}
+
+SceneChange environmentChange(const JsonNode& command, const SceneState& current) {
+    return EnvironmentChange{changed(command, current.environment, kCameraKeys)};
 }
 
 // Every material of the name changes; each keeps its own values for what is not given.
@@ -84,8 +88,8 @@ ControlRequest parseControlCommand(const std::string& line, const Scene& scene,
     const JsonNode command(json, kControlCommandFile, "");
     command.requireObject();
     const std::string cmd =
-        command.at("cmd").choice({"camera", "object", "light", "material", "status", "scene",
-                                  "pick", "exposure", "snapshot", "stop"});
+        command.at("cmd").choice({"camera", "object", "light", "material", "environment", "status",
+                                  "scene", "pick", "exposure", "snapshot", "stop"});
 
     ControlRequest request;
     request.kind = ControlRequest::Kind::Change;
@@ -97,6 +101,8 @@ ControlRequest parseControlCommand(const std::string& line, const Scene& scene,
         request.changes.push_back(lightChange(command, scene, current));
     } else if (cmd == "material") {
         request.changes = materialChanges(command, scene, current);
+    } else if (cmd == "environment") {
+        request.changes.push_back(environmentChange(command, current));
     } else if (cmd == "snapshot") {
         command.checkKeys({"cmd", "path"});
         request.kind = ControlRequest::Kind::Snapshot;

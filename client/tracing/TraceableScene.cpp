@@ -100,6 +100,7 @@ TraceableScene::TraceableScene(const SceneGeometry& geometry, const SceneState& 
     : geometry_(geometry),
       materials_(state.materials),
       textures_(&geometry.scene().textures),
+      environment_(geometry.environmentFor(state.environment)),
       suns_(sunDisksOf(state.punctualLights)) {
     const Scene& scene = geometry.scene();
     quadLightMaterialBase_ = std::uint32_t(materials_.size());
