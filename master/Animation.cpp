@@ -165,6 +165,7 @@ struct Animation::Tracks {
     std::vector<std::pair<std::uint32_t, Track<QuadLight>>> quadLights;
     /// Every material of the name gets the same keys.
     std::vector<std::pair<std::vector<std::uint32_t>, Track<Material>>> materials;
+    std::optional<Track<Environment>> environment;
     std::uint32_t lastKeyFrame = 0;
     bool empty = true;
     // The scene's shape, to refuse a base state of another scene.
@@ -204,7 +205,7 @@ Animation Animation::parse(const std::string& text, const std::string& fileName,
                            const Scene& scene) {
     const nlohmann::json json = parseJsonText(text, fileName);
     const JsonNode root(json, fileName, "");
-    root.checkKeys({"camera", "objects", "lights", "materials"});
+    root.checkKeys({"camera", "objects", "lights", "materials", "environment"});
     const SceneState base = SceneState::of(scene);
     const SceneNames names(scene);
 
@@ -254,6 +255,11 @@ Animation Animation::parse(const std::string& text, const std::string& fileName,
         }
     }
 
+    if (auto environment = root.find("environment")) {
+        tracks->environment = parseTrack<Environment>(*environment);
+        tracks->count(*tracks->environment);
+    }
+
     Animation animation;
     animation.tracks_ = std::move(tracks);
     return animation;
@@ -292,6 +298,7 @@ SceneState Animation::stateAt(std::uint32_t frame, const SceneState& base) const
             scaleToConserveEnergy(s.materials[i]);
         }
     }
+    if (t.environment) s.environment = t.environment->valueAt(frame, base.environment);
     return s;
 }
 

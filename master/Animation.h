@@ -11,8 +11,8 @@
 namespace igi {
 
 /// A keyframed animation of a scene's changeable state (docs/ANIMATION.md): the camera, mesh
-/// transforms, lights and materials, each property keyed on its own. Immutable once parsed;
-/// copies share the parsed keyframes.
+/// transforms, lights, materials and the environment, each property keyed on its own. Immutable
+/// once parsed; copies share the parsed keyframes.
 class Animation {
   public:
     /// The largest keyframe index a file may use: every frame between keyframes is checked at

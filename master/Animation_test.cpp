@@ -92,6 +92,22 @@ TEST(Animation, InterpolatesAtBetweenBeforeAndAfterKeys) {
     EXPECT_EQ(stateAt(a, 15).camera.fovYDeg, 40.0f);
 }
 
+TEST(Animation, TheEnvironmentsScaleAndRotationInterpolate) {
+    const Animation a = parse(R"({"environment": [
+        {"frame": 0, "scale": 1, "rotate_deg": 0},
+        {"frame": 10, "scale": [3, 5, 1], "rotate_deg": 90}]})");
+    EXPECT_FALSE(a.empty());
+    EXPECT_EQ(a.lastKeyFrame(), 10u);
+    const Environment e = stateAt(a, 5).environment;
+    expectVec(e.radiance, {2, 3, 1});
+    EXPECT_NEAR(e.rotateDeg, 45.0f, 1e-4f);
+    EXPECT_EQ(stateAt(a, 20).environment.radiance, glm::vec3(3, 5, 1));
+    EXPECT_EQ(errorOf(R"({"environment": [{"frame": 0, "scale": -2}]})").jsonPath(),
+              "/environment/0/scale");
+    EXPECT_EQ(errorOf(R"({"environment": [{"frame": 0, "exposure": 2}]})").jsonPath(),
+              "/environment/0/exposure");
+}
+
 TEST(Animation, EachPropertyInterpolatesBetweenTheKeysThatMentionIt) {
     const Animation a = parse(R"({"camera": [
         {"frame": 0, "position": [0, 1, 4], "fov_y": 40},

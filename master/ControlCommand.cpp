@@ -55,6 +55,10 @@ SceneChange lightChange(const JsonNode& command, const Scene& scene, const Scene
         light.index, changed(command, current.punctualLights.at(light.index), kNamedKeys)};
 }
 
+SceneChange environmentChange(const JsonNode& command, const SceneState& current) {
+    return EnvironmentChange{changed(command, current.environment, kCameraKeys)};
+}
+
 // Every material of the name changes; each keeps its own values for what is not given.
 std::vector<SceneChange> materialChanges(const JsonNode& command, const Scene& scene,
                                          const SceneState& current,
@@ -85,8 +89,8 @@ ControlRequest parseControlCommand(const std::string& line, const Scene& scene,
     const JsonNode command(json, kControlCommandFile, "");
     command.requireObject();
     const std::string cmd =
-        command.at("cmd").choice({"camera", "object", "light", "material", "status", "scene",
-                                  "pick", "exposure", "snapshot", "stop"});
+        command.at("cmd").choice({"camera", "object", "light", "material", "environment", "status",
+                                  "scene", "pick", "exposure", "snapshot", "stop"});
 
     ControlRequest request;
     request.kind = ControlRequest::Kind::Change;
@@ -98,6 +102,8 @@ ControlRequest parseControlCommand(const std::string& line, const Scene& scene,
         request.changes.push_back(lightChange(command, scene, current));
     } else if (cmd == "material") {
         request.changes = materialChanges(command, scene, current, request.warnings);
+    } else if (cmd == "environment") {
+        request.changes.push_back(environmentChange(command, current));
     } else if (cmd == "snapshot") {
         command.checkKeys({"cmd", "path"});
         request.kind = ControlRequest::Kind::Snapshot;

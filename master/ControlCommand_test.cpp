@@ -114,6 +114,20 @@ TEST(ControlCommand, LightsChangeByKind) {
     EXPECT_TRUE(p.value.on);
 }
 
+TEST(ControlCommand, TheEnvironmentChangesItsScaleRadianceAndRotation) {
+    const EnvironmentChange scaled =
+        only<EnvironmentChange>(parse(R"({"cmd":"environment","scale":4})"));
+    EXPECT_EQ(scaled.value.radiance, glm::vec3(4.0f));
+    EXPECT_EQ(scaled.value.rotateDeg, currentState().environment.rotateDeg);
+    const EnvironmentChange turned = only<EnvironmentChange>(
+        parse(R"({"cmd":"environment","radiance":[0.1,0.2,0.3],"rotate_deg":-45})"));
+    EXPECT_EQ(turned.value.radiance, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_EQ(turned.value.rotateDeg, -45.0f);
+    EXPECT_EQ(errorOf(R"({"cmd":"environment","scale":-1})").jsonPath(), "/scale");
+    EXPECT_EQ(errorOf(R"({"cmd":"environment"})").jsonPath(), "");
+    EXPECT_EQ(errorOf(R"({"cmd":"environment","name":"sky","scale":1})").jsonPath(), "/name");
+}
+
 TEST(ControlCommand, AMaterialNameChangesEveryMaterialOfThatName) {
     const ControlRequest r =
         parse(R"({"cmd":"material","name":"white","type":"glossy","specular":0.2})");
@@ -186,8 +200,8 @@ TEST(ControlCommand, BadCommandsAreClearErrors) {
     };
     const Case cases[] = {
         {R"({"cmd":"explode"})", "/cmd",
-         "unknown value 'explode' (expected one of: camera, object, light, material, status, "
-         "scene, pick, exposure, snapshot, stop)"},
+         "unknown value 'explode' (expected one of: camera, object, light, material, "
+         "environment, status, scene, pick, exposure, snapshot, stop)"},
         {R"({"command":"status"})", "", "missing required key 'cmd'"},
         {R"([1,2])", "", "expected an object, got array"},
         {R"({"cmd":"camera","positon":[0,0,1]})", "/positon",

@@ -103,6 +103,10 @@ std::optional<PropertyProblem> quadLightProblem(const QuadLight& q) {
     return std::nullopt;
 }
 
+std::optional<PropertyProblem> environmentProblem(const Environment&) {
+    return std::nullopt;  // every radiance >= 0 and every finite rotation is a sky
+}
+
 std::optional<PropertyProblem> materialProblem(const Material&) {
     return std::nullopt;  // diffuse + specular > 1 is scaled down, not refused
 }
@@ -277,6 +281,27 @@ const PropertyTable<Material>& propertyTable<Material>() {
     return table;
 }
 
+template <>
+const PropertyTable<Environment>& propertyTable<Environment>() {
+    using E = Environment;
+    static const PropertyTable<E> table{
+        "environment",
+        {
+            // A constant sky's radiance, W/(m^2 sr) per channel.
+            {"radiance", false, [](const JsonNode& n, E& e) { e.radiance = n.rgb(kNonNegative); },
+             linear<E, &E::radiance>},
+            // The factor a map's radiance is multiplied by (one number or per channel): the
+            // same field, as in the scene file.
+            {"scale", false, [](const JsonNode& n, E& e) { e.radiance = n.rgb(kNonNegative); },
+             linear<E, &E::radiance>},
+            // Degrees about +Y, right-handed.
+            {"rotate_deg", false, [](const JsonNode& n, E& e) { e.rotateDeg = n.real(); },
+             linear<E, &E::rotateDeg>},
+        },
+        environmentProblem};
+    return table;
+}
+
 template <typename T>
 PropertyMask applyProperties(const JsonNode& node, T& value,
                              const std::vector<std::string>& extraKeys) {
@@ -330,6 +355,7 @@ IGI_PROPERTY_KIND(Transform)
 IGI_PROPERTY_KIND(PunctualLight)
 IGI_PROPERTY_KIND(QuadLight)
 IGI_PROPERTY_KIND(Material)
+IGI_PROPERTY_KIND(Environment)
 
 #undef IGI_PROPERTY_KIND
 

@@ -1,9 +1,10 @@
 #pragma once
 
-// The changeable properties of each kind of scene object (camera, transform, point light, quad
-// light, material) as JSON keys: how one is read, how it blends between two values, and when
-// a whole value is unusable. Animation keyframes and control commands both read through here,
-// so a key means the same, with the same ranges and messages, in both (and as in scene files).
+// The changeable properties of each kind of scene object (camera, transform, punctual light,
+// quad light, material, environment) as JSON keys: how one is read, how it blends between two
+// values, and when a whole value is unusable. Animation keyframes and control commands both read
+// through here, so a key means the same, with the same ranges and messages, in both (and as in
+// scene files).
 
 #include <cstdint>
 #include <optional>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "scene/Camera.h"
+#include "scene/Environment.h"
 #include "scene/Light.h"
 #include "scene/Material.h"
 #include "scene/Transform.h"
@@ -63,6 +65,8 @@ template <>
 const PropertyTable<QuadLight>& propertyTable<QuadLight>();
 template <>
 const PropertyTable<Material>& propertyTable<Material>();
+template <>
+const PropertyTable<Environment>& propertyTable<Environment>();
 
 /// Applies the properties that `node` (an object) gives onto `value` and returns which it gave.
 /// Keys that are neither properties of T nor in `extraKeys` are errors naming them.

@@ -17,6 +17,24 @@ std::vector<SceneChange> moveTo(std::uint32_t mesh, float x) {
     return {TransformChange{mesh, t}};
 }
 
+// A client that joins after the sky was changed gets that sky with the rest of the state.
+TEST(SceneTimeline, AJoinerGetsTheChangedEnvironment) {
+    SceneState loaded = twoObjects();
+    loaded.environment.texture = 0;
+    loaded.environment.radiance = glm::vec3(1.0f);
+    SceneTimeline timeline(loaded, nullptr);
+    timeline.beginFrame(0);
+    Environment brighter = loaded.environment;
+    brighter.radiance = glm::vec3(4.0f);
+    brighter.rotateDeg = 15.0f;
+    timeline.control({EnvironmentChange{brighter}});
+    timeline.beginFrame(1);
+    SceneState joined = loaded;
+    applyChanges(joined, timeline.join().changes);
+    EXPECT_EQ(joined.environment, brighter);
+    EXPECT_EQ(joined, timeline.state());
+}
+
 // A joiner gets the state of the base epoch and the epochs after it, at most the depth: applying
 // them in order gives the current state, and the frames are those the epochs began at.
 TEST(SceneTimeline, AJoinerGetsTheLatestEpochsAndTheStateBeforeThem) {

@@ -173,8 +173,13 @@ nlohmann::json SessionControl::sceneJson() const {
         if (l.kind != LightKind::Point) light["direction"] = vec3Json(l.direction);
         lights.push_back(std::move(light));
     }
+    // The sky as the environment command sets it (the web view's sky sliders start from it).
+    const nlohmann::json environment = {{"radiance", vec3Json(state.environment.radiance)},
+                                        {"rotate_deg", state.environment.rotateDeg},
+                                        {"map", state.environment.texture >= 0}};
     return {{"objects", objects},
             {"lights", lights},
+            {"environment", environment},
             {"camera", cameraJson(state.camera)},
             {"exposure", scene_.image.exposure},
             {"width", scene_.image.width},

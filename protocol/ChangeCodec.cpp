@@ -22,7 +22,9 @@ static_assert(sizeof(QuadLight) == sizeof(std::string) + 56,
 // applyChanges keeps the receiver's (docs/PROTOCOL.md).
 static_assert(sizeof(Material) == sizeof(std::string) + 256,
               "Material changed: update ChangeCodec.cpp");
-static_assert(std::variant_size_v<SceneChange> == 5,
+// Not carried: the environment's map (texture), the scene's file.
+static_assert(sizeof(Environment) == 20, "Environment changed: update ChangeCodec.cpp");
+static_assert(std::variant_size_v<SceneChange> == 6,
               "a new kind of SceneChange needs a tag in ChangeCodec.cpp");
 
 // ---- writing ----
@@ -87,6 +89,12 @@ void write(ByteWriter& out, const MaterialChange& c) {
     writeVec3(out, c.value.emission);
     out.f32(c.value.roughness);
     out.f32(c.value.metallic);
+}
+
+void write(ByteWriter& out, const EnvironmentChange& c) {
+    writeTag(out, ChangeTag::Environment);
+    writeVec3(out, c.value.radiance);
+    out.f32(c.value.rotateDeg);
 }
 
 // ---- reading ----
@@ -259,6 +267,13 @@ MaterialChange readMaterialChange(ChangeFields& f) {
     return c;
 }
 
+EnvironmentChange readEnvironmentChange(ChangeFields& f) {
+    EnvironmentChange c;
+    c.value.radiance = f.colour("radiance");
+    c.value.rotateDeg = f.finite("rotateDeg");
+    return c;
+}
+
 }  // namespace
 
 void writeSceneChange(ByteWriter& out, const SceneChange& change) {
@@ -288,9 +303,13 @@ SceneChange readSceneChange(ByteReader& in, std::uint32_t index) {
             ChangeFields f(in, index, "material");
             return readMaterialChange(f);
         }
+        case ChangeTag::Environment: {
+            ChangeFields f(in, index, "environment");
+            return readEnvironmentChange(f);
+        }
     }
     in.fail("change " + std::to_string(index) + ": unknown tag " + std::to_string(tag) +
-            ", expected 0 .. 4");
+            ", expected 0 .. 5");
 }
 
 void writeSceneChanges(ByteWriter& out, const std::vector<SceneChange>& changes) {

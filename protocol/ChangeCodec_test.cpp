@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <iostream>
 #include <new>
@@ -107,7 +108,8 @@ std::string errorWithByte(std::size_t i, std::size_t offset, std::uint8_t value)
 }
 
 // Indices of the kinds in sampleChanges().
-constexpr std::size_t kCamera = 0, kTransform = 1, kPoint = 2, kQuad = 3, kMaterial = 4;
+constexpr std::size_t kCamera = 0, kTransform = 1, kPoint = 2, kQuad = 3, kMaterial = 4,
+                      kEnvironment = 6;
 
 template <typename T>
 T& as(std::vector<SceneChange>& changes, std::size_t i) {
@@ -118,7 +120,7 @@ T& as(std::vector<SceneChange>& changes, std::size_t i) {
 
 TEST(ChangeCodec, EveryKindRoundTripsWithEveryField) {
     const auto changes = sampleChanges();
-    ASSERT_EQ(changes.size(), 6u);
+    ASSERT_EQ(changes.size(), 7u);
     for (std::size_t i = 0; i < changes.size(); ++i) {
         SCOPED_TRACE("change " + std::to_string(i));
         EXPECT_TRUE(decodeChange(encodeChange(changes[i])) == changes[i]);
@@ -174,6 +176,12 @@ SceneChange randomChange(int kind, std::mt19937& rng) {
             c.value.on = rng() % 2;
             return c;
         }
+        case 5: {
+            EnvironmentChange c;
+            c.value.radiance = randomVec3(rng, 0, 1e4f);
+            c.value.rotateDeg = 720.0f * u(rng) - 360.0f;
+            return c;
+        }
         default: {
             MaterialChange c{index, {}};
             c.value.diffuse = randomVec3(rng, 0, 1);
@@ -192,7 +200,7 @@ SceneChange randomChange(int kind, std::mt19937& rng) {
 TEST(ChangeCodec, RandomChangesOfEveryKindRoundTripExactly) {
     std::mt19937 rng(2002);
     std::vector<SceneChange> changes;
-    for (int i = 0; i < 500; ++i) changes.push_back(randomChange(i % 5, rng));
+    for (int i = 0; i < 600; ++i) changes.push_back(randomChange(i % 6, rng));
     const auto decoded = decodeUpdate(updatePayload(changes));
     ASSERT_EQ(decoded.changes.size(), changes.size());
     for (std::size_t i = 0; i < changes.size(); ++i)
@@ -218,6 +226,11 @@ TEST(ChangeCodec, NamesAndTextureAreNotCarried) {
     const auto decoded = std::get<MaterialChange>(decodeChange(encodeChange(material)));
     EXPECT_EQ(decoded.value.name, "");
     EXPECT_EQ(decoded.value.diffuseTexture, -1);
+    // Nor the environment's map: the scene's file.
+    EnvironmentChange sky;
+    sky.value.texture = 2;
+    EXPECT_EQ(encodeChange(sky), encodeChange(EnvironmentChange{}));
+    EXPECT_EQ(std::get<EnvironmentChange>(decodeChange(encodeChange(sky))).value.texture, -1);
 }
 
 // ---- layout ----
@@ -228,7 +241,31 @@ TEST(ChangeCodec, SizesOfEveryKindAreAsDocumented) {
     EXPECT_EQ(encodeChange(PunctualLightChange{}).size(), 55u);
     EXPECT_EQ(encodeChange(QuadLightChange{}).size(), 54u);
     EXPECT_EQ(encodeChange(MaterialChange{}).size(), 71u);
-    EXPECT_EQ(kMinChangeBytes, 30u);
+    EXPECT_EQ(encodeChange(EnvironmentChange{}).size(), 17u);
+    EXPECT_EQ(kMinChangeBytes, 17u);
+}
+
+TEST(ChangeCodec, EnvironmentLayoutIsAsDocumented) {
+    EnvironmentChange c;
+    c.value.radiance = {1.0f, 2.0f, 0.5f};
+    c.value.rotateDeg = -90.0f;
+    std::vector<std::uint8_t> expected = {5};
+    for (float f : {1.0f, 2.0f, 0.5f, -90.0f}) {
+        std::uint32_t bits = 0;
+        std::memcpy(&bits, &f, 4);
+        for (int i = 0; i < 4; ++i) expected.push_back(std::uint8_t(bits >> (8 * i)));
+    }
+    EXPECT_EQ(encodeChange(c), expected);
+}
+
+TEST(ChangeCodec, EnvironmentRadianceMustNotBeNegativeNorRotationInfinite) {
+    EXPECT_EQ(errorAfter(
+                  [](auto& c) { as<EnvironmentChange>(c, kEnvironment).value.radiance.z = -1.0f; }),
+              "SceneUpdate: change 6 (environment): radiance.z is -1.000000, expected >= 0");
+    EXPECT_EQ(errorAfter([](auto& c) {
+                  as<EnvironmentChange>(c, kEnvironment).value.rotateDeg = INFINITY;
+              }),
+              "SceneUpdate: change 6 (environment): rotateDeg is inf, expected finite");
 }
 
 TEST(ChangeCodec, PunctualLightLayoutIsLittleEndianAsDocumented) {
@@ -299,7 +336,7 @@ TEST(ChangeCodec, TrailingBytesThrow) {
 // ---- validation: every refusal names the change and the field ----
 
 TEST(ChangeCodec, UnknownTagIsRefusedWithItsIndex) {
-    EXPECT_EQ(errorWithByte(3, 0, 5), "SceneUpdate: change 3: unknown tag 5, expected 0 .. 4");
+    EXPECT_EQ(errorWithByte(3, 0, 6), "SceneUpdate: change 3: unknown tag 6, expected 0 .. 5");
     EXPECT_CONTAINS(errorWithByte(0, 0, 255), "change 0: unknown tag 255");
     EXPECT_EQ(errorWithByte(3, 0, 3), "(no error)");  // the byte patched back to itself
 }
@@ -467,8 +504,8 @@ TEST(ChangeCodec, CountBeyondTheBytesIsRefusedBeforeAllocating) {
     const auto [error, largest] = errorAndLargestAllocation(payloadClaiming(kMaxSceneChanges, 100));
     EXPECT_EQ(error, "SceneUpdate: 1000000 scene changes cannot fit in the 100 bytes left");
     EXPECT_LT(largest, 4096u);
-    // Three changes need at least 90 bytes.
-    EXPECT_CONTAINS(errorAndLargestAllocation(payloadClaiming(3, 89)).first, "cannot fit");
+    // Three changes need at least 51 bytes.
+    EXPECT_CONTAINS(errorAndLargestAllocation(payloadClaiming(3, 50)).first, "cannot fit");
 }
 
 TEST(ChangeCodec, SceneDataChangeCountIsCheckedToo) {
@@ -539,7 +576,7 @@ TEST(ChangeCodec, RandomUpdatesThrowOrDecode) {
     // the right length), so that the field checks, not the first length check, are exercised.
     std::mt19937 rng(1003);
     std::uniform_int_distribution<int> byte(0, 255);
-    constexpr std::size_t kFieldBytes[] = {40, 40, 29, 53, 62};
+    constexpr std::size_t kFieldBytes[] = {40, 40, 54, 53, 70, 16};
     int decoded = 0;
     for (int i = 0; i < 20000; ++i) {
         std::vector<std::uint8_t> p;
@@ -547,9 +584,9 @@ TEST(ChangeCodec, RandomUpdatesThrowOrDecode) {
         const std::uint32_t count = rng() % 4;
         out.u32(count);
         for (std::uint32_t c = 0; c < count; ++c) {
-            const std::uint8_t tag = static_cast<std::uint8_t>(rng() % 6);
+            const std::uint8_t tag = static_cast<std::uint8_t>(rng() % 7);
             out.u8(tag);
-            const std::size_t n = tag < 5 ? kFieldBytes[tag] : rng() % 64;
+            const std::size_t n = tag < 6 ? kFieldBytes[tag] : rng() % 64;
             for (std::size_t b = 0; b < n; ++b) {
                 // Mostly bytes of small, finite, positive floats and of valid booleans.
                 out.u8(static_cast<std::uint8_t>(rng() % 3 ? rng() % 2 : byte(rng)));

@@ -74,7 +74,11 @@ inline std::vector<SceneChange> sampleChanges() {
     mirror.value.reflection = Reflection::Mirror;
     mirror.value.specular = {1.0f, 1.0f, 1.0f};
 
-    return {camera, transform, point, quad, material, mirror};
+    EnvironmentChange environment;
+    environment.value.radiance = {2.5f, 0.0f, 1e-3f};
+    environment.value.rotateDeg = -400.0f;
+
+    return {camera, transform, point, quad, material, mirror, environment};
 }
 
 inline SceneUpdate sampleSceneUpdate() {

@@ -162,6 +162,12 @@ int main(int argc, char** argv) {
                           {"--roughness", "roughness", 1},
                           {"--metallic", "metallic", 1},
                           {"--type", "type", -1}});
+    auto environment =
+        addChangeCommand(app, "environment",
+                         "changes the environment: a map's scale, a constant sky's radiance", false,
+                         {{"--scale", "scale", 3},
+                          {"--radiance", "radiance", 3},
+                          {"--rotate-deg", "rotate_deg", 1}});
     auto* status =
         app.add_subcommand("status", "frames done, epoch, accumulated frames, clients, fps");
     bool table = false;
@@ -195,6 +201,7 @@ int main(int argc, char** argv) {
     if (*object->app) command = toJson(*object, "object");
     if (*light->app) command = toJson(*light, "light");
     if (*material->app) command = toJson(*material, "material");
+    if (*environment->app) command = toJson(*environment, "environment");
     if (*status) command = {{"cmd", "status"}};
     if (*scene) command = {{"cmd", "scene"}};
     if (*pick) command = {{"cmd", "pick"}, {"x", pickX}, {"y", pickY}};

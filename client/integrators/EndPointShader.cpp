@@ -347,14 +347,19 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
     const glm::vec3 origin = scene_.offsetOrigin(x.position, x.faceNormal, w);
     SurfacePoint hit;
     if (!scene_.intersect(origin, w, tfar, hit, counters)) {
-        // The sky seen by the glossy lobe: the BRDF-sampling half of the MIS pair again.
+        // The sky seen by the glossy lobe: the BRDF-sampling half of the MIS pair again, for
+        // the environment and for each sun's disk, each against its own light samples.
         if (glossy) {
-            const glm::vec3 sky = scene_.skyRadiance(w);
+            const glm::vec3 sky = scene_.environment().radiance(w);
             if (!isBlack(sky)) {
                 const float lightPdf = lights_.environmentPdfAt(x.position, b.normal, w);
                 const float mis = powerHeuristic(pdf, float(directSamples_) * lightPdf);
                 sums.glossy += sky * glossyF * (scale * mis);
             }
+            if (lights_.hasSuns())
+                sums.glossy +=
+                    lights_.sunsSeenByBrdf(x.position, b.normal, w, pdf, float(directSamples_)) *
+                    glossyF * scale;
         }
         return;
     }

@@ -92,7 +92,7 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
     // in order).
     thread_local std::vector<Continuation> continuations;
     continuations.clear();
-    const bool sky = scene_.environment().present();
+    const bool sky = scene_.hasSky();
     for (int i = 0; i < count; ++i) {
         if (paths[std::size_t(i)].found)
             splitAtFirstHit(paths[std::size_t(i)], i, results[i], continuations);

@@ -49,14 +49,20 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
     for (int depth = 0; depth < settings_.maxPathLength; ++depth) {
         if (!scene_.intersect(origin, direction, kInfinity, hit, counters)) {
             // The sky: seen directly and through mirrors whole, else weighed against the
-            // light samples that could have chosen it.
-            const glm::vec3 sky = scene_.skyRadiance(direction);
-            if (isBlack(sky)) break;
-            float weight = 1.0f;
-            if (lastWasNonDelta)
-                weight = powerHeuristic(
-                    lastPdf, lights_.environmentPdfAt(lastPosition, lastNormal, direction));
-            radiance += beta * sky * weight;
+            // light samples that could have chosen it (the environment and each sun's disk).
+            if (!lastWasNonDelta) {
+                const glm::vec3 whole = scene_.skyRadiance(direction);
+                if (!isBlack(whole)) radiance += beta * whole;
+                break;
+            }
+            const glm::vec3 sky = scene_.environment().radiance(direction);
+            if (!isBlack(sky))
+                radiance += beta * sky *
+                            powerHeuristic(lastPdf, lights_.environmentPdfAt(
+                                                        lastPosition, lastNormal, direction));
+            if (lights_.hasSuns())
+                radiance += beta * lights_.sunsSeenByBrdf(lastPosition, lastNormal, direction,
+                                                          lastPdf, 1.0f);
             break;
         }
         const glm::vec3 wo = -direction;

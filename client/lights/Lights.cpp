@@ -11,6 +11,7 @@
 #include "math/Color.h"
 #include "math/Frame.h"
 #include "math/Warp.h"
+#include "shading/ConnectionBound.h"
 
 namespace igi {
 namespace {
@@ -114,13 +115,11 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
             ++finite;
         } else {
             e.kind = Kind::Directional;
-            const float half = 0.5f * glm::radians(p.angleDeg);
-            // 1 - cos from the sine, which keeps its digits for the real sun's 0.27 degrees.
-            e.oneMinusCos = 2.0f * std::sin(0.5f * half) * std::sin(0.5f * half);
-            // E = L pi sin^2(half), and a direction uniform in the cone estimates it as
-            // L * solid angle = E * 2 (1 - cos) / sin^2 = E * 2 / (1 + cos).
-            e.sunScale = 2.0f / (2.0f - e.oneMinusCos);
+            e.oneMinusCos = sunOneMinusCos(p.angleDeg);
+            e.sunScale = sunConeScale(e.oneMinusCos);
             hasDirectional_ = true;
+            if (const std::optional<SunDisk> disk = sunDiskOf(p))
+                suns_.push_back({*disk, std::uint32_t(emitters_.size())});
             // What crosses the disk of the scene's bounding sphere.
             power.push_back(kPi * radius_ * radius_ * luminance(p.intensity));
         }
@@ -240,8 +239,32 @@ LightSample Lights::pointOn(std::size_t i, float select, glm::vec2 uPoint) const
         const float distance = radius_ + kSunDistance * radius_;
         s.position = center_ - s.direction * distance;
         s.emitted = s.irradiance * (distance * distance);
+        if (e.oneMinusCos > 0) {
+            // The disk is seen in the sky (SunDisk), so glossy lobes that find it by BRDF
+            // sampling weigh it against this sample: a point of the disk on the far sphere,
+            // facing the scene, as the environment's, whose area density there gives the
+            // cone's solid-angle density (1 / solid angle) and whose radiance is the disk's.
+            const float solidAngle = sunSolidAngle(e.oneMinusCos);
+            s.isPoint = false;
+            s.normal = s.direction;
+            s.emitted = e.emitted * (e.sunScale / solidAngle);
+            s.pdf = select / (solidAngle * distance * distance);
+        }
     }
     return s;
+}
+
+glm::vec3 Lights::sunsSeenByBrdf(glm::vec3 p, glm::vec3 n, glm::vec3 toSky, float brdfPdf,
+                                 float lightSamples) const {
+    glm::vec3 sum(0.0f);
+    for (const Sun& sun : suns_) {
+        if (!sun.disk.contains(toSky)) continue;
+        const float selection = choosesPerPoint() ? tree_.probability(p, n, sun.emitter)
+                                                  : distribution_.pdf(sun.emitter);
+        const float lightPdf = selection / sun.disk.solidAngle();
+        sum += sun.disk.radiance * powerHeuristic(brdfPdf, lightSamples * lightPdf);
+    }
+    return sum;
 }
 
 float Lights::environmentPdfAt(glm::vec3 p, glm::vec3 n, glm::vec3 toSky) const {

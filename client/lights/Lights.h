@@ -9,6 +9,7 @@
 
 #include "lights/EmissiveTexture.h"
 #include "lights/LightTree.h"
+#include "lights/SunDisk.h"
 #include "lights/Vpl.h"
 #include "render/RenderSettings.h"
 #include "sampling/Distribution1D.h"
@@ -26,7 +27,9 @@ namespace igi {
 /// A directional light's sample is a point light far outside the scene (kSunDistance radii
 /// beyond its bounding sphere, in the sampled direction) whose intensity gives the sun's
 /// irradiance at the scene: every receiver connects to it as to a point light, with a parallax
-/// and a 1/d^2 variation across the scene below 2e-5. Light paths leave it from the disk
+/// and a 1/d^2 variation across the scene below 2e-5. A soft sun's (one with an angle, whose
+/// disk is visible) is an area-light sample on the far sphere instead, as the environment's,
+/// so that glossy lobes weigh it against BRDF sampling. Light paths leave either from the disk
 /// across the scene's bounding sphere instead (Lights::diskOrigin), along `direction`.
 struct LightSample {
     glm::vec3 position{0.0f};
@@ -89,6 +92,13 @@ class Lights {
     /// The density (solid angle) with which sampleAt(p, n) picks the environment in the
     /// direction `toSky`, for multiple importance sampling; 0 without one.
     float environmentPdfAt(glm::vec3 p, glm::vec3 n, glm::vec3 toSky) const;
+    /// Whether some soft sun is on (its disk is seen in the sky: SunDisk).
+    bool hasSuns() const { return !suns_.empty(); }
+    /// The radiance of the suns' disks that a direction sampled from a BRDF at p (normal n)
+    /// with solid-angle density `brdfPdf` sees along the unit `toSky`, each weighted by the
+    /// power heuristic against the `lightSamples` light samples at p that could have chosen it.
+    glm::vec3 sunsSeenByBrdf(glm::vec3 p, glm::vec3 n, glm::vec3 toSky, float brdfPdf,
+                             float lightSamples) const;
 
     /// Where a light path of a directional light travelling along unit `direction` starts: a
     /// point, uniform by u, on the disk of the scene's bounding sphere's radius that faces
@@ -120,6 +130,12 @@ class Lights {
     Distribution1D distribution_;
     LightTree tree_;  ///< empty when receivers choose by power
     std::unordered_map<std::uint64_t, std::uint32_t> triangleToEmitter_;
+    /// A soft sun's disk and its emitter (for its selection probability).
+    struct Sun {
+        SunDisk disk;
+        std::uint32_t emitter = 0;
+    };
+    std::vector<Sun> suns_;
     const EnvironmentMap* environment_ = nullptr;  ///< when the scene has a sky
     std::uint32_t environmentIndex_ = 0;           ///< its emitter
     glm::vec3 center_{0.0f};                       ///< the scene's bounding sphere

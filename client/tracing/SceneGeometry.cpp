@@ -184,6 +184,16 @@ SceneGeometry::Placement SceneGeometry::placementOf(const SceneState& state) {
     return p;
 }
 
+EnvironmentMap SceneGeometry::environmentFor(const Environment& environment) const {
+    if (environment == environment_.description()) return environment_;
+    // A camera that moves after a change of the sky makes an epoch per frame with the same
+    // environment: its tables (a map's are a pass over every texel) are made once.
+    std::lock_guard<std::mutex> lock(environmentMutex_);
+    if (!(changedEnvironment_.description() == environment))
+        changedEnvironment_ = environment_.changedTo(environment, scene_.textures);
+    return changedEnvironment_;
+}
+
 SceneLayout SceneGeometry::layoutOf(const SceneState& state) const {
     if (triangleCount_ <= kFlatRebuildTriangles) return SceneLayout::Flat;
     return placementOf(state) == loaded_ ? SceneLayout::Flat : SceneLayout::Instanced;

@@ -45,7 +45,12 @@ class SceneGeometry {
     const EmbreeDevice& device() const { return device_; }
     const Scene& scene() const { return scene_; }
     /// The sky, with its sampling distribution (built once: a map's can take a while).
+    /// The environment as loaded.
     const EnvironmentMap& environment() const { return environment_; }
+    /// The environment a state describes (a live change of its radiance or rotation): the one
+    /// as loaded when unchanged, else made from it (EnvironmentMap::changedTo) and kept for
+    /// the epochs that follow with the same environment. Safe from many threads.
+    EnvironmentMap environmentFor(const Environment& environment) const;
     /// The Embree scene of mesh i, or null for a mesh without triangles. A mesh with cut-out
     /// triangles (materials with hasCutOuts) holds its opaque ones under geometry ID
     /// kOpaqueGeometry and the cut-out ones, with the filter functions, under kCutOutGeometry;
@@ -115,6 +120,8 @@ class SceneGeometry {
     const EmbreeDevice& device_;
     const Scene& scene_;
     EnvironmentMap environment_;
+    mutable std::mutex environmentMutex_;
+    mutable EnvironmentMap changedEnvironment_;  ///< the latest environmentFor() made
     std::vector<RTCScene> meshes_;
     std::vector<Parts> parts_;  ///< per mesh
     std::vector<std::uint32_t> cutOutMeshes_;

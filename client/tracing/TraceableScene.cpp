@@ -98,7 +98,11 @@ TraceableScene::TraceableScene(const SceneGeometry& geometry)
     : TraceableScene(geometry, SceneState::of(geometry.scene())) {}
 
 TraceableScene::TraceableScene(const SceneGeometry& geometry, const SceneState& state)
-    : geometry_(geometry), materials_(state.materials), textures_(&geometry.scene().textures) {
+    : geometry_(geometry),
+      materials_(state.materials),
+      textures_(&geometry.scene().textures),
+      environment_(geometry.environmentFor(state.environment)),
+      suns_(sunDisksOf(state.punctualLights)) {
     const Scene& scene = geometry.scene();
     quadLightMaterialBase_ = std::uint32_t(materials_.size());
     cutOutBase_ = std::uint32_t(scene.meshes.size() + state.quadLights.size());

@@ -12,6 +12,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "lights/SunDisk.h"
 #include "math/RayOffset.h"
 #include "scene/Scene.h"
 #include "scene/SceneState.h"
@@ -122,10 +123,18 @@ class TraceableScene {
     /// The centre of the scene's bounds: with diagonal() / 2 as radius, a sphere around it all
     /// (the disk that light from infinitely far away enters through).
     glm::vec3 center() const { return center_; }
-    /// What a ray that leaves the scene sees.
-    const EnvironmentMap& environment() const { return geometry_.environment(); }
+    /// The environment: what a ray that leaves the scene sees besides the suns' disks.
+    const EnvironmentMap& environment() const { return environment_; }
+    /// The disks of the soft suns that are on (SunDisk), in the state's light order.
+    const std::vector<SunDisk>& suns() const { return suns_; }
+    /// Whether a ray that leaves the scene may see anything: an environment or a sun's disk.
+    bool hasSky() const { return environment().present() || !suns_.empty(); }
+    /// What a ray that leaves the scene along `direction` sees, whole: the environment and the
+    /// suns' disks (for rays no light sample could stand for: camera rays and mirror chains).
     glm::vec3 skyRadiance(glm::vec3 direction) const {
-        return geometry_.environment().radiance(direction);
+        glm::vec3 radiance = environment_.radiance(direction);
+        if (!suns_.empty()) radiance += sunRadianceToward(suns_, glm::normalize(direction));
+        return radiance;
     }
     /// Area-weighted mean Lambertian albedo of the diffuse surfaces (the fraction of light paths
     /// continued at each diffuse bounce in the quasi-random walk).
@@ -178,6 +187,8 @@ class TraceableScene {
     float diagonal_ = 1.0f;
     glm::vec3 center_{0.0f};
     float meanAlbedo_ = 0.5f;
+    EnvironmentMap environment_;  ///< the state's (a live change may differ from the file's)
+    std::vector<SunDisk> suns_;
     std::uint64_t triangleCount_ = 0;
     int packetWidth_ = 8;
 };

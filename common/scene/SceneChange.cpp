@@ -33,6 +33,10 @@ void apply(SceneState& s, const SceneChange& change) {
                 QuadLight value = c.value;
                 value.name = s.quadLights[c.light].name;
                 s.quadLights[c.light] = value;
+            } else if constexpr (std::is_same_v<C, EnvironmentChange>) {
+                Environment value = c.value;
+                value.texture = s.environment.texture;  // the map is the scene's file
+                s.environment = value;
             } else {
                 checkIndex(c.material, s.materials, "material");
                 Material value = c.value;
@@ -88,6 +92,7 @@ std::vector<SceneChange> diffStates(const SceneState& from, const SceneState& to
     for (std::uint32_t i = 0; i < to.materials.size() && i < from.materials.size(); ++i)
         if (!(from.materials[i] == to.materials[i]))
             changes.push_back(MaterialChange{i, to.materials[i]});
+    if (!(from.environment == to.environment)) changes.push_back(EnvironmentChange{to.environment});
     return changes;
 }
 

@@ -36,8 +36,15 @@ struct MaterialChange {
     bool operator==(const MaterialChange&) const = default;
 };
 
-using SceneChange =
-    std::variant<CameraChange, TransformChange, PunctualLightChange, QuadLightChange, MaterialChange>;
+/// The environment's radiance (a constant sky's, or the factor its map is scaled by) and
+/// rotation; its map is the scene's file, which no change carries.
+struct EnvironmentChange {
+    Environment value;
+    bool operator==(const EnvironmentChange&) const = default;
+};
+
+using SceneChange = std::variant<CameraChange, TransformChange, PunctualLightChange,
+                                 QuadLightChange, MaterialChange, EnvironmentChange>;
 
 /// Applies changes in order. Throws std::invalid_argument naming the first change whose index
 /// is out of range (the state is then unchanged).

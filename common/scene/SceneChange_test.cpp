@@ -49,5 +49,22 @@ TEST(SceneChange, NamesAndTexturesStayAndBadIndicesChangeNothing) {
     EXPECT_EQ(s, before);  // the camera change before the bad one did not stick
 }
 
+TEST(SceneChange, TheEnvironmentChangesItsRadianceAndRotationButKeepsItsMap) {
+    SceneState s = twoObjects();
+    s.environment.texture = 2;
+    s.environment.radiance = glm::vec3(1.0f);
+    SceneState to = s;
+    to.environment.radiance = glm::vec3(4.0f, 3.0f, 2.0f);
+    to.environment.rotateDeg = 90.0f;
+    const auto changes = diffStates(s, to);
+    ASSERT_EQ(changes.size(), 1u);
+    Environment sent = std::get<EnvironmentChange>(changes[0]).value;
+    sent.texture = -1;  // the wire does not carry the map
+    applyChanges(s, {EnvironmentChange{sent}});
+    EXPECT_EQ(s, to);
+    EXPECT_EQ(s.environment.texture, 2);
+    EXPECT_FALSE(s.sameLightsAndMaterials(twoObjects()));
+}
+
 }  // namespace
 }  // namespace igi

@@ -11,6 +11,7 @@ SceneState SceneState::of(const Scene& scene) {
     s.materials = scene.materials;
     s.punctualLights = scene.punctualLights;
     s.quadLights = scene.quadLights;
+    s.environment = scene.environment;
     return s;
 }
 
@@ -24,6 +25,7 @@ void SceneState::applyTo(Scene& scene) const {
     scene.materials = materials;
     scene.punctualLights = punctualLights;
     scene.quadLights = quadLights;
+    scene.environment = environment;
 }
 
 }  // namespace igi

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "scene/Camera.h"
+#include "scene/Environment.h"
 #include "scene/Light.h"
 #include "scene/Material.h"
 #include "scene/Scene.h"
@@ -11,7 +12,8 @@
 namespace igi {
 
 /// Everything about a scene that may change while it renders: the camera, where each object
-/// is, the lights and the materials. Geometry and textures stay as loaded. The master keeps the
+/// is, the lights, the materials and the environment's radiance (or scale) and rotation.
+/// Geometry and textures (the environment's map among them) stay as loaded. The master keeps the
 /// current state; each change makes a new epoch, and clients keep one state per epoch they
 /// still have tiles for.
 struct SceneState {
@@ -20,6 +22,7 @@ struct SceneState {
     std::vector<Material> materials;    ///< as Scene::materials
     std::vector<PunctualLight> punctualLights;
     std::vector<QuadLight> quadLights;
+    Environment environment;
 
     /// The state a freshly loaded scene is in.
     static SceneState of(const Scene& scene);
@@ -35,7 +38,7 @@ struct SceneState {
     /// same surfaces carries the same power.
     bool sameLightsAndMaterials(const SceneState& o) const {
         return materials == o.materials && punctualLights == o.punctualLights &&
-               quadLights == o.quadLights;
+               quadLights == o.quadLights && environment == o.environment;
     }
 };
 
