@@ -27,6 +27,9 @@ THREADS=${THREADS:-2}
 OUT=${OUT:-$root/build/lights_cycles}
 SCENES=${SCENES:-"cornell/sunlit sky/sky"}
 bin=${BIN:-$root/build/bin}  # BIN: binaries built elsewhere from the same sources
+# Cycles' spot falloff: ours (the default, a light shader with the glTF ramp) or "cycles"
+# (Cycles' own smoothstep blend); scripts/peers/cycles_render.py reads it.
+export IGI_CYCLES_SPOT_RAMP=${IGI_CYCLES_SPOT_RAMP:-ours}
 
 if ! command -v blender >/dev/null; then
   sudo=""

@@ -9,11 +9,11 @@
 
 #include "lights/EmissiveTexture.h"
 #include "lights/LightTree.h"
-#include "lights/SunDisk.h"
 #include "lights/Vpl.h"
 #include "render/RenderSettings.h"
 #include "sampling/Distribution1D.h"
 #include "scene/Scene.h"
+#include "tracing/SunDisk.h"
 #include "tracing/TraceableScene.h"
 
 namespace igi {

@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "lights/Lights.h"
-#include "lights/SunDisk.h"
 #include "math/Color.h"
 #include "testing/TestScenes.h"
+#include "tracing/SunDisk.h"
 
 namespace igi {
 namespace {

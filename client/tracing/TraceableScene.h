@@ -12,11 +12,11 @@
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 
-#include "lights/SunDisk.h"
 #include "math/RayOffset.h"
 #include "scene/Scene.h"
 #include "scene/SceneState.h"
 #include "tracing/SceneGeometry.h"
+#include "tracing/SunDisk.h"
 #include "tracing/SurfacePoint.h"
 
 namespace igi {
