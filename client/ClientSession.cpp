@@ -1,4 +1,5 @@
 #include "ClientSession.h"
+#include "BuildId.h"
 
 #include <chrono>
 #include <thread>
@@ -94,8 +95,8 @@ void ClientSession::onChallenge(const proto::Challenge& c) {
     if (c.protocolVersion != proto::kVersion)
         return giveUp("the master speaks protocol " + std::to_string(c.protocolVersion) +
                       ", this client " + std::to_string(proto::kVersion));
-    if (c.buildId != IGI_BUILD_ID)
-        return giveUp("the master is build " + c.buildId + ", this client build " IGI_BUILD_ID);
+    if (c.buildId != igi::buildId())
+        return giveUp("the master is build " + c.buildId + ", this client build " + igi::buildId());
     if (c.secretRequired && !key_)
         return giveUp(
             "the master requires the cluster secret: give --secret-file FILE or IGI_SECRET");
@@ -105,7 +106,7 @@ void ClientSession::onChallenge(const proto::Challenge& c) {
             "(--insecure accepts it)");
     nonce_ = net::ClusterKey::randomNonce();
     proto::Hello hello;
-    hello.buildId = IGI_BUILD_ID;
+    hello.buildId = igi::buildId();
     hello.threads = pool_.size();
     hello.hostname = boost::asio::ip::host_name();
     hello.nonce = nonce_;

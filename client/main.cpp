@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include "BuildId.h"
 #include "ClientSession.h"
 #include "util/HostPort.h"
 #include "util/LogLevels.h"
@@ -10,7 +11,7 @@
 int main(int argc, char** argv) {
     CLI::App app{"igi-client: renders tiles for an igi-master"};
     // The identity a master compares at connect; scripts/cluster.sh asks each host for it first.
-    app.set_version_flag("--version", IGI_BUILD_ID, "print the build identity and exit");
+    app.set_version_flag("--version", igi::buildId(), "print the build identity and exit");
     std::string connect = "127.0.0.1:7878";
     igi::ClientOptions options;
     std::string logLevel = "info";

@@ -1,4 +1,5 @@
 #include "ClientRoster.h"
+#include "BuildId.h"
 
 #include <algorithm>
 
@@ -120,7 +121,7 @@ void ClientRoster::admit(boost::asio::ip::tcp::socket socket) {
             events_.onTileResult(it->second, h, std::move(payload));
         });
     // First words: what this master runs, and a fresh nonce to prove the secret with.
-    c.connection->send(proto::Challenge{proto::kVersion, IGI_BUILD_ID, key_.has_value(), c.nonce},
+    c.connection->send(proto::Challenge{proto::kVersion, igi::buildId(), key_.has_value(), c.nonce},
                        0, 0);
 }
 
@@ -154,9 +155,9 @@ void ClientRoster::refuse(ConnectedClient& c, const std::string& reason) {
 
 void ClientRoster::onHello(ConnectedClient& c, const proto::Hello& hello) {
     if (c.helloed) return refuse(c, "a second Hello");
-    if (hello.buildId != IGI_BUILD_ID)
+    if (hello.buildId != igi::buildId())
         return refuse(
-            c, "client build " + hello.buildId + " does not match master build " IGI_BUILD_ID);
+            c, "client build " + hello.buildId + " does not match master build " + igi::buildId());
     if (key_) {
         // Nothing is given to a peer that cannot prove it holds the cluster secret.
         if (!hello.proof ||

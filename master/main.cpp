@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cstdint>
 
+#include "BuildId.h"
 #include "Master.h"
 #include "OutputCheck.h"
 #include "ProgressLine.h"
@@ -68,7 +69,7 @@ std::uint64_t parseSeed(const std::string& text) {
 
 int main(int argc, char** argv) {
     CLI::App app{"igi-master: Instant Global Illumination on a cluster of render clients"};
-    app.set_version_flag("--version", IGI_BUILD_ID, "print the build identity and exit");
+    app.set_version_flag("--version", igi::buildId(), "print the build identity and exit");
     igi::MasterOptions o;
     std::string scene, listen, logLevel = "info";
     std::vector<std::string> outputs;

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "BuildId.h"
 #include "Session.h"
 
 namespace igi {
@@ -387,7 +388,7 @@ TEST(CommandLine, IgiCtlGetsRatesAtOnceWholePathsAndWarningsAndTheLogSaysWhatItD
     const ProcessResult version =
         runProcess({(binDir() / "igi-ctl").string(), "--version"}, dir / "version.log", 30);
     EXPECT_EQ(version.exitCode, 0) << version.output;
-    EXPECT_TRUE(contains(version.output, IGI_BUILD_ID)) << version.output;
+    EXPECT_TRUE(contains(version.output, igi::buildId())) << version.output;
     fs::remove_all(dir);
 }
 

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "BuildId.h"
 #include "RawPeer.h"
 #include "Session.h"
 
@@ -79,7 +80,7 @@ TEST(Security, PeersWithoutTheSecretGetNothingAndTheSessionGoesOn) {
         RawPeer peer = challenged(port);
         ASSERT_TRUE(peer.valid());
         proto::Hello hello;
-        hello.buildId = IGI_BUILD_ID;
+        hello.buildId = igi::buildId();
         auto bytes = proto::encodeMessage(hello, 0, 0);
         // The header's version, after the 4-byte magic: the next one, which no build speaks yet.
         bytes[4] = std::uint8_t(kOtherVersion & 0xFF), bytes[5] = std::uint8_t(kOtherVersion >> 8);
@@ -96,7 +97,7 @@ TEST(Security, PeersWithoutTheSecretGetNothingAndTheSessionGoesOn) {
         ASSERT_TRUE(answer && std::holds_alternative<proto::Error>(*answer));
         const std::string reason = std::get<proto::Error>(*answer).reason;
         EXPECT_NE(reason.find("0.0-someone-elses-build"), std::string::npos) << reason;
-        EXPECT_NE(reason.find(IGI_BUILD_ID), std::string::npos) << reason;
+        EXPECT_NE(reason.find(igi::buildId()), std::string::npos) << reason;
     }
     {  // A peer that connects and never proves itself loses its slot.
         RawPeer idle = RawPeer::connectTo(port);
@@ -155,7 +156,7 @@ TEST(Security, AClientTakesNothingFromAMasterThatCannotProveTheSecret) {
     const fs::path dir = scratchDir("impostor");
     const fs::path secret = writeSecret(dir, "secret", "the cluster's own shared secret");
     proto::Challenge challenge;
-    challenge.buildId = IGI_BUILD_ID;
+    challenge.buildId = igi::buildId();
     challenge.nonce.fill(3);
 
     proto::AuthBytes forged;
@@ -177,7 +178,7 @@ TEST(Security, AClientTakesNothingFromAMasterThatCannotProveTheSecret) {
         runAgainstImpostor(dir, "build", other, std::nullopt, {"--secret-file", secret.string()});
     EXPECT_EQ(run.exitCode, 3) << run.log;
     EXPECT_NE(run.log.find("0.0-someone-elses-build"), std::string::npos) << run.log;
-    EXPECT_NE(run.log.find(IGI_BUILD_ID), std::string::npos) << run.log;
+    EXPECT_NE(run.log.find(igi::buildId()), std::string::npos) << run.log;
     if (!HasFailure()) fs::remove_all(dir);
 }
 

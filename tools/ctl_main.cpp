@@ -12,6 +12,7 @@
 #include <boost/asio/write.hpp>
 #include <nlohmann/json.hpp>
 
+#include "BuildId.h"
 #include "util/HostPort.h"
 
 namespace {
@@ -126,7 +127,7 @@ void printTable(const nlohmann::json& status) {
 
 int main(int argc, char** argv) {
     CLI::App app{"igi-ctl: controls a running igi-master (started with --control HOST:PORT)"};
-    app.set_version_flag("--version", IGI_BUILD_ID, "print the build identity and exit");
+    app.set_version_flag("--version", igi::buildId(), "print the build identity and exit");
     std::string connect = "127.0.0.1:7879";
     app.add_option("--connect", connect, "the master's control HOST:PORT")->capture_default_str();
     app.require_subcommand(1);
