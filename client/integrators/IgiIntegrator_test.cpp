@@ -82,14 +82,9 @@ TEST_P(GlossySphere, ConvergedIgiMatchesThePathTracerWithinTwoPercent) {
     m.specular = glm::vec3(0.35f);
     m.phongExponent = 20.0f;
     m.reflection = Reflection::Glossy;
-    InProcessRenderer igi(scene);
-    const Image a = igi.render(48);
-    EXPECT_EQ(igi.nonFiniteValues(), 0u);
-    scene.render.integrator = IntegratorKind::Path;
-    scene.render.pathSamples = 128;
-    scene.render.maxPathLength = 64;
-    const Image b = InProcessRenderer(scene).render(4);
-    const double ratio = testing::meanOf(a).x / testing::meanOf(b).x;
+    const testing::IgiAndPathImages r = testing::renderIgiAndPath(scene, 48, 128, 4, 64);
+    EXPECT_EQ(r.nonFinite, 0u);
+    const double ratio = r.igiMean().x / r.pathMean().x;
     std::printf("glossy sphere, R = %g: IGI / path tracer %.4f\n", radius, ratio);
     EXPECT_NEAR(ratio, 1.0, 0.02) << "R = " << radius;
 }

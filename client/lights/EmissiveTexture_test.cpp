@@ -159,15 +159,10 @@ TEST(EmissiveTexture, LightSamplingDrawsThePowerOfTheTexels) {
 // The floor under the bright half is brighter; the camera sees the bright half of the emitter
 // bright and the dark half dark; IGI's accumulated image converges to the path tracer's.
 TEST(EmissiveTexture, HalfBrightQuadLightsTheFloorUnderItsBrightHalf) {
-    Scene scene = halfBrightScene();
-    InProcessRenderer igi(scene);
-    const Image image = igi.render(64);
-    EXPECT_EQ(igi.nonFiniteValues(), 0u);
-    scene.render.integrator = IntegratorKind::Path;
-    scene.render.pathSamples = 256;
-    InProcessRenderer path(scene);
-    const Image truth = path.render(4);
-    EXPECT_EQ(path.nonFiniteValues(), 0u);
+    const testing::IgiAndPathImages both = testing::renderIgiAndPath(halfBrightScene(), 64, 256, 4);
+    EXPECT_EQ(both.nonFinite, 0u);
+    const Image& image = both.igi;
+    const Image& truth = both.path;
 
     // Rows 4..8 see the emitter's underside, rows 17..20 the floor under it.
     auto mean = [&](const Image& im, int x0, int x1, int y0, int y1) {

@@ -204,12 +204,8 @@ Scene sunlitCorner() {
 
 TEST(SunlitCorner, ConvergedIgiMatchesThePathTracer) {
     Scene scene = sunlitCorner();
-    InProcessRenderer igi(scene);
-    const glm::dvec3 a = testing::meanOf(igi.render(32));
-    scene.render.integrator = IntegratorKind::Path;
-    scene.render.pathSamples = 256;
-    InProcessRenderer path(scene);
-    const glm::dvec3 b = testing::meanOf(path.render(1));
+    const testing::IgiAndPathImages r = testing::renderIgiAndPath(scene, 32, 256);
+    const glm::dvec3 a = r.igiMean(), b = r.pathMean();
     std::printf("sunlit corner: igi %.5f, path tracer %.5f\n", a.x, b.x);
     EXPECT_NEAR(a.x / b.x, 1.0, 0.02);
     // Without the VPLs' light (direct only) IGI is clearly darker: the test sees indirect light.

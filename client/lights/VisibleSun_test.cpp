@@ -148,14 +148,9 @@ TEST(GlossyUnderASoftSun, IgiAndThePathTracerAgreeOnAGlossyFloorUnderASoftSun) {
     scene.camera = {glm::vec3(-2, 2, 0), glm::vec3(0.0f), glm::vec3(0, 1, 0), 40};
     scene.image = {32, 24, 0};
     scene.render.causticPhotons = 0;
-    InProcessRenderer igi(scene);
-    const Image a = igi.render(32);
-    scene.render.integrator = IntegratorKind::Path;
-    scene.render.pathSamples = 256;
-    InProcessRenderer path(scene);
-    const Image b = path.render(1);
-    for (const auto& p : a.pixels) ASSERT_TRUE(isFinite(p));
-    const double ma = testing::meanOf(a).y, mb = testing::meanOf(b).y;
+    const testing::IgiAndPathImages r = testing::renderIgiAndPath(scene, 32, 256);
+    EXPECT_EQ(r.nonFinite, 0u);
+    const double ma = r.igiMean().y, mb = r.pathMean().y;
     // The diffuse part alone (albedo / pi E cos 45 over the whole floor) for scale: the
     // highlight must be a good part of the image for the comparison to mean anything.
     const double diffuseOnly = 0.3 / 3.14159265 * kIrradiance * std::sqrt(0.5);

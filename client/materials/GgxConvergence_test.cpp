@@ -50,19 +50,10 @@ Scene ggxScene() {
 // After 256 accumulated frames the mean is within 0.5 % of a 4096-spp path-traced image of
 // the same scene, and no value is NaN or infinite.
 TEST(GgxConvergence, ConvergesToThePathTracerOnMetallicRoughnessSurfaces) {
-    Scene reference = ggxScene();
-    reference.render.integrator = IntegratorKind::Path;
-    reference.render.pathSamples = 256;
-    reference.render.maxPathLength = 64;
-    testing::InProcessRenderer tracer(reference);
-    const Image truth = tracer.render(16);  // 4096 paths per pixel
-    EXPECT_EQ(tracer.nonFiniteValues(), 0u);
-
-    const Scene scene = ggxScene();
-    testing::InProcessRenderer renderer(scene);
-    const Image image = renderer.render(256);
-    EXPECT_EQ(renderer.nonFiniteValues(), 0u);
-    const ImageDifference d = compareImages(image, truth, 16);
+    // 4096 paths per pixel for the reference.
+    const testing::IgiAndPathImages r = testing::renderIgiAndPath(ggxScene(), 256, 256, 16, 64);
+    EXPECT_EQ(r.nonFinite, 0u);
+    const ImageDifference d = compareImages(r.igi, r.path, 16);
     std::printf(
         "GGX scene, 256 frames against 4096 spp: bias %+.4f, 16 x 16 block error %.4f, "
         "relMSE %.3g\n",

@@ -223,6 +223,37 @@ inline glm::dvec3 meanOf(const Image& image) {
     return sum / double(image.pixels.size());
 }
 
+/// IGI's accumulated image of a scene and our path tracer's image of the same scene: the path
+/// tracer shares the BRDF and light code and is the exact reference that IGI must converge to.
+struct IgiAndPathImages {
+    Image igi, path;
+    /// NaN or infinite values in the tiles of either renderer.
+    std::size_t nonFinite = 0;
+
+    glm::dvec3 igiMean() const { return meanOf(igi); }
+    glm::dvec3 pathMean() const { return meanOf(path); }
+    /// IGI's mean over the path tracer's, in the luminance-like green channel.
+    double meanRatio() const { return igiMean().y / pathMean().y; }
+};
+
+/// Renders `igiFrames` accumulated IGI frames of `scene`, then `pathFrames` frames of
+/// `pathSamples` paths per pixel with the path tracer; `maxPathLength` > 0 overrides the
+/// scene's path length for the path tracer.
+inline IgiAndPathImages renderIgiAndPath(Scene scene, int igiFrames, int pathSamples,
+                                         int pathFrames = 1, int maxPathLength = 0) {
+    IgiAndPathImages out;
+    scene.render.integrator = IntegratorKind::Igi;
+    InProcessRenderer igi(scene);
+    out.igi = igi.render(igiFrames);
+    scene.render.integrator = IntegratorKind::Path;
+    scene.render.pathSamples = pathSamples;
+    if (maxPathLength > 0) scene.render.maxPathLength = maxPathLength;
+    InProcessRenderer path(scene);
+    out.path = path.render(pathFrames);
+    out.nonFinite = igi.nonFiniteValues() + path.nonFiniteValues();
+    return out;
+}
+
 /// The mean length of the per-pixel difference of two images of one size (to tell that a
 /// feature changed what is rendered).
 inline double meanDifference(const Image& a, const Image& b) {

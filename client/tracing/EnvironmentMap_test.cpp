@@ -192,14 +192,9 @@ void expectIgiMatchesPathTracerUnder(const Texture& sky, double tolerance) {
     scene.camera = {{0.5f, 1.6f, 2.4f}, {0, 0.3f, 0}, {0, 1, 0}, 45};
     scene.image = {32, 24, 0};
     scene.render.causticPhotons = 0;
-    InProcessRenderer igi(scene);
-    const Image a = igi.render(32);
-    scene.render.integrator = IntegratorKind::Path;
-    scene.render.pathSamples = 256;
-    InProcessRenderer path(scene);
-    const Image b = path.render(1);
-    for (const auto& p : a.pixels) ASSERT_TRUE(isFinite(p));
-    const double ma = testing::meanOf(a).y, mb = testing::meanOf(b).y;
+    const testing::IgiAndPathImages r = testing::renderIgiAndPath(scene, 32, 256);
+    EXPECT_EQ(r.nonFinite, 0u);
+    const double ma = r.igiMean().y, mb = r.pathMean().y;
     std::printf("under %s: igi %.5g, path tracer %.5g\n", sky.path.c_str(), ma, mb);
     EXPECT_NEAR(ma / mb, 1.0, tolerance);
 }
