@@ -53,30 +53,11 @@ for s in $SCENES; do
   mkdir -p "$OUT/scenes"
   mkdir -p "$OUT/scenes/$dir"
   cp -r "$root/scenes/$dir/." "$OUT/scenes/$dir/"
-  while read -r v; do variants+=("$v"); done < <(python3 - "$OUT/scenes/$dir/$name.json" "${ONLY_FULL:-0}" <<'EOF'
-import json, os, sys
-path, only_full = sys.argv[1], sys.argv[2] == "1"
-spec = json.load(open(path))
-base = os.path.splitext(path)[0]
-print(path)
-if not only_full:
-    sources = [("light", i) for i in range(len(spec.get("lights", [])))]
-    if "environment" in spec:
-        sources.append(("environment", None))
-    for kind, i in sources:
-        copy = dict(spec)
-        if kind == "light":
-            copy["lights"] = [spec["lights"][i]]
-            copy.pop("environment", None)
-            label = spec["lights"][i].get("name", f"light{i}")
-        else:
-            copy["lights"] = []
-            label = "environment"
-        out = f"{base}.only-{label}.json"
-        json.dump(copy, open(out, "w"), indent=1)
-        print(out)
-EOF
-  )
+  variants+=("$OUT/scenes/$dir/$name.json")
+  if [ "${ONLY_FULL:-0}" != 1 ]; then
+    while read -r v; do variants+=("$v"); done < <(python3 "$root/scripts/light_variants.py" \
+      "$OUT/scenes/$dir/$name.json")
+  fi
 done
 
 render() {  # what, output, command...

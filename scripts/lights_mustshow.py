@@ -46,6 +46,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from equal_time import at as loglog_at  # noqa: E402
+from light_variants import write_variants  # noqa: E402
 
 SCENES = [
     {"name": "cornell-spot", "file": "scenes/cornell/spot.json",
@@ -181,30 +182,10 @@ def variant_files(scene_path, out_dir):
         m["file"] = moved(m["file"])
     if "file" in spec.get("environment", {}):
         spec["environment"]["file"] = moved(spec["environment"]["file"])
-    sources = [("light", i) for i in range(len(spec.get("lights", [])))]
-    if "environment" in spec:
-        sources.append(("environment", None))
-    if len(sources) < 2:
-        return []
-    out = []
     base = os.path.splitext(os.path.basename(scene_path))[0]
-    for kind, i in sources:
-        copy = dict(spec)
-        if kind == "light":
-            copy["lights"] = [spec["lights"][i]]
-            copy.pop("environment", None)
-            label = spec["lights"][i].get("name", f"light{i}")
-        else:
-            copy["lights"] = []
-            label = "environment"
-        path = os.path.join(out_dir, f"{base}.only-{label}.json")
-        with open(path, "w") as f:
-            json.dump(copy, f, indent=1)
-        out.append((label, path))
-    return out
+    return write_variants(spec, out_dir, base)
 
 
-# ------------------------------------------------------------------ images
 def read_rgb(path):
     import OpenImageIO as oiio
 
