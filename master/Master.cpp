@@ -8,6 +8,8 @@
 
 #include "Codec.h"
 #include "ImageSize.h"
+#include "LightingReport.h"
+#include "LocalClientLaunch.h"
 #include "OpenPort.h"
 #include "OptionWarnings.h"
 #include "RenderFlags.h"
@@ -20,26 +22,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The epochs of history a joining client replays to hold the lighting the others hold:
-/// photon streaming's pool spans the last stream_window epochs (the oldest of which a joiner
-/// fills whole, as every client filled epoch 0); selective photon tracing's depends on every
-/// epoch since the session began, and so does simulated photon mapping's emission (each frame
-/// checks photons round robin); IGI keeps nothing, and instant caching's records are a
-/// function of the current state alone (a joiner computes them anew, to the same bits).
-std::uint32_t joinHistoryDepth(const RenderSettings& s) {
-    if (s.integrator == IntegratorKind::Path) return 0;
-    switch (s.gi) {
-        case GiMode::Stream:
-            return std::uint32_t(std::max(0, s.streamWindow - 1));
-        case GiMode::Spt:
-        case GiMode::PhotonMap:
-            return proto::kMaxHistoryEpochs;
-        case GiMode::Igi:
-        case GiMode::Cache:
-            break;
-    }
-    return 0;
-}
 constexpr auto kTickPeriod = std::chrono::milliseconds(20);
 // A tile is copied to an idle client only after it has been out at least this long (and three
 // times its holder's usual latency, see TileScheduler): short enough to get past a stalled
@@ -57,23 +39,6 @@ constexpr std::size_t kFrameBufferBytesPerPixel = proto::CodedFrame::kBytesPerPi
 
 double secondsSince(Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-// How the scene is lit, when that is not the scene's own lights: a black image must not come
-// as a surprise.
-void reportLighting(const Scene& scene, const MasterOptions& o) {
-    if (sceneHasHeadlight(scene)) {
-        const std::string ext = o.scene.extension().string();
-        spdlog::info("a headlight at the camera lights the scene ({})",
-                     o.headlight      ? "--headlight"
-                     : ext != ".json" ? "nothing in the model emits light"
-                                      : "the scene file asks for it");
-    } else if (!sceneHasEmitter(scene)) {
-        spdlog::warn(
-            "scene {} has no light (no lights, environment or emissive material): the image "
-            "will be black; --headlight adds a light at the camera",
-            o.scene.string());
-    }
 }
 
 }  // namespace
@@ -536,30 +501,10 @@ int Master::run() {
 
 void Master::startLocalClients() {
     if (options_.localClients <= 0) return;
-    const unsigned threads =
-        options_.clientThreads > 0
-            ? options_.clientThreads
-            : std::max(1u, ThreadPool::defaultThreads() / unsigned(options_.localClients));
-    const std::string port = std::to_string(roster_->port());
-    const std::string host = options_.listenHost == "0.0.0.0" ? "127.0.0.1" : options_.listenHost;
-    std::vector<std::string> args = {"--connect",   host + ":" + port,
-                                     "--threads",   std::to_string(threads),
-                                     "--log-level", options_.clientLogLevel};
-    if (options_.replayClients) args.push_back("--replay");
-    // They load the scene this master loaded and logged: one warning once, not N + 1 times.
-    args.push_back("--no-scene-warnings");
-    // They belong to this session: when it ends or this master dies, they go too.
-    args.insert(args.end(), {"--reconnect-seconds", "0"});
-    std::vector<std::string> environment;
-    if (options_.insecure) {
-        args.push_back("--insecure");
-    } else if (!roster_->localSecret().empty()) {
-        environment.push_back("IGI_SECRET=" + roster_->localSecret());
-    } else if (!options_.secretFile.empty()) {
-        args.insert(args.end(), {"--secret-file", options_.secretFile.string()});
-    }  // else: they inherit IGI_SECRET
-    localClients_.start(LocalClients::clientExecutableBesideSelf(), args, options_.localClients,
-                        environment);
+    const LocalClientLaunch launch = localClientLaunch(
+        options_, roster_->port(), roster_->localSecret(), ThreadPool::defaultThreads());
+    localClients_.start(LocalClients::clientExecutableBesideSelf(), launch.arguments,
+                        options_.localClients, launch.environment);
 }
 
 void Master::writeStatistics() const {

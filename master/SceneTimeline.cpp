@@ -1,6 +1,30 @@
 #include "SceneTimeline.h"
 
+#include <algorithm>
+
+#include "Messages.h"
+
 namespace igi {
+
+// Photon streaming's pool spans the last stream_window epochs (the oldest of which a joiner
+// fills whole, as every client filled epoch 0); selective photon tracing's depends on every
+// epoch since the session began, and so does simulated photon mapping's emission (each frame
+// checks photons round robin); IGI keeps nothing, and instant caching's records are a function
+// of the current state alone (a joiner computes them anew, to the same bits).
+std::uint32_t joinHistoryDepth(const RenderSettings& s) {
+    if (s.integrator == IntegratorKind::Path) return 0;
+    switch (s.gi) {
+        case GiMode::Stream:
+            return std::uint32_t(std::max(0, s.streamWindow - 1));
+        case GiMode::Spt:
+        case GiMode::PhotonMap:
+            return proto::kMaxHistoryEpochs;
+        case GiMode::Igi:
+        case GiMode::Cache:
+            break;
+    }
+    return 0;
+}
 
 SceneTimeline::SceneTimeline(SceneState loaded, std::unique_ptr<Animation> animation,
                              std::uint32_t historyDepth)

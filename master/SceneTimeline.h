@@ -7,10 +7,15 @@
 #include <vector>
 
 #include "Animation.h"
+#include "render/RenderSettings.h"
 #include "scene/SceneChange.h"
 #include "scene/SceneState.h"
 
 namespace igi {
+
+/// The epochs of history a joining client replays to hold the lighting the others hold, for
+/// the GI mode of `settings` (the `historyDepth` of a SceneTimeline).
+std::uint32_t joinHistoryDepth(const RenderSettings& settings);
 
 /// Decides the scene state of every frame, as the single source of truth: the scene as loaded,
 /// changed by control commands as they arrive and by the animation frame by frame. Each change

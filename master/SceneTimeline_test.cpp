@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "Messages.h"
+
 namespace igi {
 namespace {
 
@@ -85,6 +87,28 @@ TEST(SceneTimeline, AHistoryDeepEnoughReachesTheLoadedScene) {
     EXPECT_EQ(join.baseFirstFrame, 0u);
     ASSERT_EQ(join.history.size(), 1u);
     EXPECT_EQ(join.history[0].firstFrame, 1u);
+}
+
+// Joiners replay exactly the history their mode's lighting depends on: a stream window's
+// worth for photon streaming, everything kept for SPT and photon mapping, nothing for the
+// stateless modes or the path tracer.
+TEST(JoinHistoryDepth, FollowsTheGiMode) {
+    RenderSettings s;
+    s.gi = GiMode::Igi;
+    EXPECT_EQ(joinHistoryDepth(s), 0u);
+    s.gi = GiMode::Cache;
+    EXPECT_EQ(joinHistoryDepth(s), 0u);
+    s.gi = GiMode::Stream;
+    s.streamWindow = 5;
+    EXPECT_EQ(joinHistoryDepth(s), 4u);
+    s.streamWindow = 0;
+    EXPECT_EQ(joinHistoryDepth(s), 0u);
+    s.gi = GiMode::Spt;
+    EXPECT_EQ(joinHistoryDepth(s), proto::kMaxHistoryEpochs);
+    s.gi = GiMode::PhotonMap;
+    EXPECT_EQ(joinHistoryDepth(s), proto::kMaxHistoryEpochs);
+    s.integrator = IntegratorKind::Path;
+    EXPECT_EQ(joinHistoryDepth(s), 0u);
 }
 
 }  // namespace
