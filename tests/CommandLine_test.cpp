@@ -35,14 +35,6 @@ ProcessResult runMaster(const fs::path& log, int frames, const std::vector<std::
     return runProcess(masterCommand(args), log, timeout);
 }
 
-ProcessResult runCtl(const fs::path& log, const std::string& port,
-                     const std::vector<std::string>& args) {
-    std::vector<std::string> command = {(binDir() / "igi-ctl").string(), "--connect",
-                                        "127.0.0.1:" + port};
-    command.insert(command.end(), args.begin(), args.end());
-    return runProcess(command, log, 60);
-}
-
 nlohmann::json replyOf(const ProcessResult& r) {
     return nlohmann::json::parse(r.output, nullptr, false);
 }
@@ -77,10 +69,8 @@ TEST(CommandLine, OutputsAreCheckedBeforeTheFirstFrameAndOneFailingSparesTheOthe
                  (dir / "gone" / "a.png").string(), "--output", (dir / "good.png").string()});
     const fs::path log = dir / "gone.log";
     const pid_t master = spawnProcess(masterCommand(args), log);
-    const auto control =
-        waitForLine(log, std::regex(R"(control commands on 127\.0\.0\.1:(\d+))"), master);
-    ASSERT_FALSE(control.empty()) << readFile(log);
-    const std::string port = control[1].str();
+    const std::string port = waitForControlPort(log, master);
+    ASSERT_FALSE(port.empty()) << readFile(log);
     ASSERT_FALSE(waitForLine(log, std::regex(R"(frame +1:)"), master).empty()) << readFile(log);
     fs::remove_all(dir / "gone");
     std::ofstream(dir / "gone") << "a file where the folder was\n";
@@ -335,10 +325,8 @@ TEST(CommandLine, IgiCtlGetsRatesAtOnceWholePathsAndWarningsAndTheLogSaysWhatItD
                              (dir / "final.exr").string()});
     const fs::path log = dir / "master.log";
     const pid_t master = spawnProcess(masterCommand(args), log);
-    const auto control =
-        waitForLine(log, std::regex(R"(control commands on 127\.0\.0\.1:(\d+))"), master);
-    ASSERT_FALSE(control.empty()) << readFile(log);
-    const std::string port = control[1].str();
+    const std::string port = waitForControlPort(log, master);
+    ASSERT_FALSE(port.empty()) << readFile(log);
     ASSERT_FALSE(waitForLine(log, std::regex(R"(frame +3:)"), master).empty()) << readFile(log);
 
     // The session's first status already has the clients' rates.

@@ -199,19 +199,10 @@ TEST(Dynamic, ControlCommandsMoveTheSceneWhileItRenders) {
          "127.0.0.1:0", "--no-accumulate", "--log-level", "info"},
         log);
     ASSERT_GT(master, 0);
-    std::smatch port;
-    for (int i = 0; i < 6000 && port.empty(); ++i) {
-        static std::string text;
-        text = readFile(log);
-        std::regex_search(text, port, std::regex(R"(control commands on 127\.0\.0\.1:(\d+))"));
-        if (port.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    ASSERT_FALSE(port.empty()) << readFile(log);
-    const std::string controlPort = port[1].str();
-    auto ctl = [&](std::vector<std::string> args) {
-        args.insert(args.begin(),
-                    {(binDir() / "igi-ctl").string(), "--connect", "127.0.0.1:" + controlPort});
-        return runProcess(args, dir / "ctl.log", 60);
+    const std::string controlPort = waitForControlPort(log, master);
+    ASSERT_FALSE(controlPort.empty()) << readFile(log);
+    auto ctl = [&](const std::vector<std::string>& args) {
+        return runCtl(dir / "ctl.log", controlPort, args);
     };
 
     ProcessResult r = ctl({"snapshot", (dir / "before.exr").string()});

@@ -36,14 +36,10 @@ TEST(LiveEnvironment, AControlCommandScalesTheSkyAndTheImageBrightensByTheFactor
                       "--control", "127.0.0.1:0", "--log-level", "info"},
                      log);
     ASSERT_GT(master, 0);
-    const std::smatch port =
-        waitForLine(log, std::regex(R"(control commands on 127\.0\.0\.1:(\d+))"), master);
-    ASSERT_FALSE(port.empty()) << readFile(log);
-    const std::string controlPort = port[1].str();
-    auto ctl = [&](std::vector<std::string> args) {
-        args.insert(args.begin(),
-                    {(binDir() / "igi-ctl").string(), "--connect", "127.0.0.1:" + controlPort});
-        return runProcess(args, dir / "ctl.log", 60);
+    const std::string controlPort = waitForControlPort(log, master);
+    ASSERT_FALSE(controlPort.empty()) << readFile(log);
+    auto ctl = [&](const std::vector<std::string>& args) {
+        return runCtl(dir / "ctl.log", controlPort, args);
     };
 
     // Snapshots of the accumulated image: several frames each, so that their noise is small

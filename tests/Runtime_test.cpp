@@ -77,10 +77,8 @@ TEST(Runtime, AClientJoiningMidSessionGetsWorkInTheNextFrames) {
         waitForLine(log, std::regex(R"(listening on 127\.0\.0\.1:(\d+))"), master);
     ASSERT_FALSE(listening.empty()) << readFile(log);
     const std::string port = listening[1].str();
-    const auto control =
-        waitForLine(log, std::regex(R"(control commands on 127\.0\.0\.1:(\d+))"), master);
-    ASSERT_FALSE(control.empty()) << readFile(log);
-    const std::string controlPort = control[1].str();
+    const std::string controlPort = waitForControlPort(log, master);
+    ASSERT_FALSE(controlPort.empty()) << readFile(log);
     ASSERT_FALSE(waitForLine(log, std::regex(R"(frame +3:)"), master).empty()) << readFile(log);
 
     const pid_t joiner =
@@ -101,9 +99,7 @@ TEST(Runtime, AClientJoiningMidSessionGetsWorkInTheNextFrames) {
     // Let a few more frames go by, then stop the session.
     const std::regex later("frame +" + std::to_string(lastFrame + 6) + ":");
     ASSERT_FALSE(waitForLine(log, later, master).empty()) << readFile(log);
-    const ProcessResult stop = runProcess(
-        {(binDir() / "igi-ctl").string(), "--connect", "127.0.0.1:" + controlPort, "stop"},
-        dir / "ctl.log");
+    const ProcessResult stop = runCtl(dir / "ctl.log", controlPort, {"stop"});
     ASSERT_EQ(stop.exitCode, 0) << stop.output;
     ASSERT_EQ(waitProcess(master, 300), 0) << readFile(log);
     EXPECT_EQ(waitProcess(joiner, 30), 0) << readFile(dir / "joiner.log");

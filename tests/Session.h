@@ -123,6 +123,23 @@ inline void expectSameAsUndisturbed(const std::filesystem::path& dir, int frames
     expectSameImage(dir / "faulty.exr", dir / "undisturbed.exr");
 }
 
+/// The control port of a master started with `--control 127.0.0.1:0`, from its log line ("" if
+/// the master exited or never logged it).
+inline std::string waitForControlPort(const std::filesystem::path& log, pid_t master) {
+    const auto control =
+        waitForLine(log, std::regex(R"(control commands on 127\.0\.0\.1:(\d+))"), master);
+    return control.empty() ? std::string() : control[1].str();
+}
+
+/// Runs `igi-ctl --connect 127.0.0.1:PORT ARGS...`, its output going to `log`.
+inline ProcessResult runCtl(const std::filesystem::path& log, const std::string& port,
+                            const std::vector<std::string>& args) {
+    std::vector<std::string> command = {(binDir() / "igi-ctl").string(), "--connect",
+                                        "127.0.0.1:" + port};
+    command.insert(command.end(), args.begin(), args.end());
+    return runProcess(command, log, 60);
+}
+
 /// A session that renders until told to stop, so that a fault always lands mid-session however
 /// fast or slow the machine is; its image is then compared with an undisturbed run of as many
 /// frames as it finished.
@@ -142,9 +159,7 @@ struct OpenSession {
         const auto listening =
             waitForLine(log, std::regex(R"(listening on 127\.0\.0\.1:(\d+))"), master);
         if (!listening.empty()) port = listening[1].str();
-        const auto control =
-            waitForLine(log, std::regex(R"(control commands on 127\.0\.0\.1:(\d+))"), master);
-        if (!control.empty()) controlPort = control[1].str();
+        controlPort = waitForControlPort(log, master);
     }
     ~OpenSession() {
         if (master > 0 && kill(master, 0) == 0) kill(master, SIGKILL), waitProcess(master, 10);
@@ -164,9 +179,7 @@ struct OpenSession {
 
     /// Stops the session; returns how many frames it finished (-1 on failure).
     int stop() {
-        const ProcessResult r = runProcess(
-            {(binDir() / "igi-ctl").string(), "--connect", "127.0.0.1:" + controlPort, "stop"},
-            dir / "ctl.log");
+        const ProcessResult r = runCtl(dir / "ctl.log", controlPort, {"stop"});
         if (r.exitCode != 0 || waitProcess(master, 300) != 0) return -1;
         master = -1;
         std::ifstream file(dir / "stats.json");
