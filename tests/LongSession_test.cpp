@@ -104,7 +104,8 @@ TEST(LongSession, TheMastersMemoryStaysFlatFrameAfterFrame) {
             waitProcess(master, 10);
             FAIL() << "the master did not finish " << kFrames << " frames in 15 minutes";
         }
-        if (frame >= kFrames / 2) secondHalf.emplace_back(frame, double(kb));
+        // Up to the last frame: the outputs written after it are not a frame's cost.
+        if (frame >= kFrames / 2 && frame < kFrames - 1) secondHalf.emplace_back(frame, double(kb));
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     ASSERT_EQ(waitProcess(master, 600), 0) << readFile(log);
