@@ -353,6 +353,7 @@ void Master::onComposited(std::uint32_t f, double seconds) {
     if (progress_) progress_->update(int(f + 1), stats_.recentFps(), roster_->readyCount());
     outputs_->writeFrameImages(f);
     publishToView(f);
+    stats_.closeFrame(f);
     scheduler_->closeFrame(f);
     timeline_->endFrame(f);
     spareBuffers_.push_back(std::move(frames_.at(f)->buffer));
@@ -476,6 +477,15 @@ int Master::run() {
         spdlog::warn("signal {}: ending the session after {} frames", signal, nextFrameToFinish_);
         stop();
     });
+    if (!options_.statsJson.empty()) {
+        // Frames are written as they close: a session of days must not hold them all.
+        try {
+            stats_.streamFramesFor(options_.statsJson);
+        } catch (const std::exception& e) {
+            spdlog::error("{}", e.what());
+            return 1;
+        }
+    }
     startLocalClients();
     scheduleTick();
     io_.run();
@@ -484,6 +494,7 @@ int Master::run() {
     // shown, so that the image and the frame count agree.
     for (std::uint32_t f = nextFrameToFinish_; f < compositedUpTo_.load(); ++f) {
         noteShown(f);
+        stats_.closeFrame(f);
         outputs_->writeFrameImages(f);
         nextFrameToFinish_ = f + 1;
     }
@@ -507,7 +518,7 @@ void Master::startLocalClients() {
                         options_.localClients, launch.environment);
 }
 
-void Master::writeStatistics() const {
+void Master::writeStatistics() {
     const double start = std::chrono::duration<double>(renderStart_ - created_).count();
     const double end = std::chrono::duration<double>(renderEnd_ - created_).count();
     spdlog::info("{} frames in {:.2f} s: {:.2f} fps", nextFrameToFinish_, end - start,

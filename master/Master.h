@@ -71,7 +71,7 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     std::uint32_t maxTileResultBytes() const;
     void startControl();
     void startLocalClients();
-    void writeStatistics() const;
+    void writeStatistics();
 
     // ClientRoster::Events
     void onWelcomed(ConnectedClient& client) override;

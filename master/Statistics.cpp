@@ -8,6 +8,73 @@
 
 namespace igi {
 
+namespace {
+
+nlohmann::json frameJson(const FrameStats& f) {
+    return {{"index", f.index},
+            {"seconds", f.seconds},
+            {"composite_seconds", f.compositeSeconds},
+            {"decode_seconds", f.decodeSeconds},
+            {"epoch", f.epoch},
+            {"accumulated", f.accumulated},
+
+            {"rays", f.rays},
+            {"shadow_rays", f.shadowRays},
+            {"shadow_rays_per_pixel", f.pixels ? double(f.shadowRays) / double(f.pixels) : 0.0},
+            {"wire_bytes", f.wireBytes},
+            {"wire_bytes_per_pixel", f.pixels ? double(f.wireBytes) / double(f.pixels) : 0.0},
+            {"pixels", f.pixels},
+            {"tiles", f.tiles},
+            {"duplicate_tiles", f.duplicateTiles},
+            {"sets_built", f.setsBuilt},
+            {"vpls", f.vplsPerSet},
+            {"caustic_photons", f.photonsPerSet}};
+}
+
+}  // namespace
+
+Statistics::~Statistics() {
+    if (framesPath_.empty()) return;
+    framesOut_.close();
+    std::error_code ignored;
+    std::filesystem::remove(framesPath_, ignored);
+}
+
+std::filesystem::path Statistics::framesFile(const std::filesystem::path& path) {
+    return std::filesystem::path(path.string() + ".frames.jsonl");
+}
+
+void Statistics::streamFramesFor(const std::filesystem::path& path) {
+    framesPath_ = framesFile(path);
+    if (framesPath_.has_parent_path())
+        std::filesystem::create_directories(framesPath_.parent_path());
+    framesOut_.open(framesPath_, std::ios::trunc);
+    if (!framesOut_) throw std::runtime_error(framesPath_.string() + ": cannot write statistics");
+}
+
+void Statistics::closeFrame(std::uint32_t index) {
+    closedBelow_ = std::max(closedBelow_, index + 1);
+    for (auto& [id, c] : clients_) {
+        const auto sets = c.setsByOpenFrame.find(index);
+        if (sets == c.setsByOpenFrame.end()) continue;
+        ++c.frames;
+        c.setsInFrames += sets->second.size();
+        if (c.firstFrame < 0 || index < c.firstFrame) c.firstFrame = index;
+        c.setsByOpenFrame.erase(sets);
+    }
+    vplSum_.erase(index);
+    photonSum_.erase(index);
+    const auto it = frames_.find(index);
+    if (it == frames_.end()) return;
+    if (it->second.shown) {
+        ++shownFrames_;
+        // One line per frame (through the stream's buffer, a few KB behind): while the session
+        // runs, the sidecar is its record so far, in JSON lines.
+        if (framesOut_.is_open()) framesOut_ << frameJson(it->second).dump() << '\n';
+    }
+    frames_.erase(it);
+}
+
 FrameStats& Statistics::frame(std::uint32_t index) {
     FrameStats& f = frames_[index];
     f.index = index;
@@ -42,14 +109,15 @@ void Statistics::addTile(std::uint32_t frameIndex, ClientId clientId, const prot
 
 void Statistics::addDuplicate(std::uint32_t frameIndex, ClientId clientId,
                               std::uint64_t wireBytes) {
+    client(clientId).bytes += wireBytes;
+    if (frameIndex < closedBelow_) return;  // its frame is written and forgotten
     FrameStats& f = frame(frameIndex);
     ++f.duplicateTiles;
     f.wireBytes += wireBytes;
-    client(clientId).bytes += wireBytes;
 }
 
 void Statistics::noteAssignment(std::uint32_t frameIndex, ClientId clientId, int k) {
-    client(clientId).setsByFrame[frameIndex].insert(k);
+    client(clientId).setsByOpenFrame[frameIndex].insert(k);
 }
 
 void Statistics::noteFrameDone(double seconds) {
@@ -83,7 +151,7 @@ Statistics::Rates Statistics::sampleRates(double seconds) const {
 }
 
 double Statistics::fps(double totalSeconds) const {
-    std::size_t shown = 0;
+    std::uint64_t shown = shownFrames_;
     for (const auto& [index, f] : frames_) shown += f.shown;
     return totalSeconds > 0 ? double(shown) / totalSeconds : 0.0;
 }
@@ -104,31 +172,15 @@ std::string Statistics::summaryLine(std::uint32_t index) const {
 }
 
 void Statistics::writeJson(const std::filesystem::path& path, const nlohmann::json& session,
-                           double renderStart, double renderEnd) const {
+                           double renderStart, double renderEnd) {
     const double totalSeconds = renderEnd - renderStart;
-    nlohmann::json frames = nlohmann::json::array();
-    for (const auto& [index, f] : frames_) {
-        if (!f.shown) continue;
-        frames.push_back(
-            {{"index", f.index},
-             {"seconds", f.seconds},
-             {"composite_seconds", f.compositeSeconds},
-             {"decode_seconds", f.decodeSeconds},
-             {"epoch", f.epoch},
-             {"accumulated", f.accumulated},
+    if (framesPath_.empty()) streamFramesFor(path);
+    while (!frames_.empty()) closeFrame(frames_.begin()->first);
+    for (auto& [id, c] : clients_)
+        while (!c.setsByOpenFrame.empty()) closeFrame(c.setsByOpenFrame.begin()->first);
+    framesOut_.close();
+    if (!framesOut_) throw std::runtime_error(framesPath_.string() + ": cannot write statistics");
 
-             {"rays", f.rays},
-             {"shadow_rays", f.shadowRays},
-             {"shadow_rays_per_pixel", f.pixels ? double(f.shadowRays) / double(f.pixels) : 0.0},
-             {"wire_bytes", f.wireBytes},
-             {"wire_bytes_per_pixel", f.pixels ? double(f.wireBytes) / double(f.pixels) : 0.0},
-             {"pixels", f.pixels},
-             {"tiles", f.tiles},
-             {"duplicate_tiles", f.duplicateTiles},
-             {"sets_built", f.setsBuilt},
-             {"vpls", f.vplsPerSet},
-             {"caustic_photons", f.photonsPerSet}});
-    }
     nlohmann::json clients = nlohmann::json::array();
     for (const auto& [id, c] : clients_) {
         // Busy: its threads' render time over its thread count; idle: the rest of the time it
@@ -136,36 +188,46 @@ void Statistics::writeJson(const std::filesystem::path& path, const nlohmann::js
         const double from = std::max(renderStart, c.readySeconds);
         const double to = c.leftSeconds >= 0 ? std::min(renderEnd, c.leftSeconds) : renderEnd;
         const double busy = c.renderSeconds / std::max(1u, c.threads);
-        std::size_t sets = 0;
-        for (const auto& [frame, ks] : c.setsByFrame) sets += ks.size();
-        clients.push_back(
-            {{"id", c.id},
-             {"host", c.host},
-             {"peer", c.peer},
-             {"threads", c.threads},
-             {"tiles", c.tiles},
-             {"rays", c.rays},
-             {"bytes", c.bytes},
-             {"render_seconds", c.renderSeconds},
-             {"busy_seconds", busy},
-             {"idle_seconds", std::max(0.0, to - from - busy)},
-             {"frames", c.setsByFrame.size()},
-             {"first_frame",
-              c.setsByFrame.empty() ? -1 : std::int64_t(c.setsByFrame.begin()->first)},
-             {"distinct_sets_per_frame",
-              c.setsByFrame.empty() ? 0.0 : double(sets) / double(c.setsByFrame.size())},
-             {"left", c.left},
-             {"leave_reason", c.leaveReason}});
+        clients.push_back({{"id", c.id},
+                           {"host", c.host},
+                           {"peer", c.peer},
+                           {"threads", c.threads},
+                           {"tiles", c.tiles},
+                           {"rays", c.rays},
+                           {"bytes", c.bytes},
+                           {"render_seconds", c.renderSeconds},
+                           {"busy_seconds", busy},
+                           {"idle_seconds", std::max(0.0, to - from - busy)},
+                           {"frames", c.frames},
+                           {"first_frame", c.firstFrame},
+                           {"distinct_sets_per_frame",
+                            c.frames ? double(c.setsInFrames) / double(c.frames) : 0.0},
+                           {"left", c.left},
+                           {"leave_reason", c.leaveReason}});
     }
-    nlohmann::json root{{"frames", frames},
-                        {"clients", clients},
-                        {"fps", fps(totalSeconds)},
-                        {"seconds", totalSeconds},
-                        {"session", session}};
+    const nlohmann::json rest{{"clients", clients},
+                              {"fps", fps(totalSeconds)},
+                              {"seconds", totalSeconds},
+                              {"session", session}};
+    // The frames are copied line by line from the sidecar, never held in memory together: a
+    // session of days has millions of them. The rest is one object whose opening brace is
+    // replaced by the frames' array.
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-    std::ofstream out(path);
-    if (!out) throw std::runtime_error(path.string() + ": cannot write statistics");
-    out << root.dump(2) << '\n';
+    {
+        std::ofstream out(path);
+        std::ifstream in(framesPath_);
+        if (!out || !in) throw std::runtime_error(path.string() + ": cannot write statistics");
+        out << "{\n  \"frames\": [";
+        std::string line;
+        for (bool first = true; std::getline(in, line); first = false)
+            out << (first ? "\n    " : ",\n    ") << line;
+        const std::string tail = rest.dump(2);  // "{\n  \"clients\": ..."
+        out << "\n  ],\n" << tail.substr(2) << '\n';
+        if (!out) throw std::runtime_error(path.string() + ": cannot write statistics");
+    }
+    std::error_code ignored;
+    std::filesystem::remove(framesPath_, ignored);
+    framesPath_.clear();
 }
 
 }  // namespace igi

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <deque>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <string>
@@ -52,12 +53,31 @@ struct ClientStats {
     double leftSeconds = -1;   ///< when it left, or -1
     bool left = false;
     std::string leaveReason;
-    std::map<std::uint32_t, std::set<int>> setsByFrame;  ///< interleaving sets it got, per frame
+    /// Interleaving sets it got, per frame still open; a closed frame is folded into the
+    /// totals below, so that a session of days keeps only the frames in flight.
+    std::map<std::uint32_t, std::set<int>> setsByOpenFrame;
+    std::uint64_t frames = 0;        ///< closed frames it got tiles of
+    std::uint64_t setsInFrames = 0;  ///< distinct sets it got, summed over those frames
+    std::int64_t firstFrame = -1;    ///< the first frame it got a tile of
 };
 
-/// Collects statistics for --stats-json and the console.
+/// Collects statistics for --stats-json and the console. Memory stays flat however long the
+/// session: a frame's statistics are kept while it is open, and written out (to a sidecar file
+/// beside --stats-json, one JSON line per frame) when it closes; the per-client figures are
+/// running totals.
 class Statistics {
   public:
+    Statistics() = default;
+    Statistics(const Statistics&) = delete;
+    Statistics& operator=(const Statistics&) = delete;
+    /// Removes the sidecar of a session that did not get to writeJson (an error exit).
+    ~Statistics();
+
+    /// Frames closed from now on go to `framesFile(path)` as they close, for writeJson(path).
+    void streamFramesFor(const std::filesystem::path& path);
+    /// Where the frames of a --stats-json `path` wait for the end of the session (JSON lines).
+    static std::filesystem::path framesFile(const std::filesystem::path& path);
+
     FrameStats& frame(std::uint32_t index);
     ClientStats& client(ClientId id);
     /// A tile result that completed its tile.
@@ -67,11 +87,16 @@ class Statistics {
     void addDuplicate(std::uint32_t frame, ClientId client, std::uint64_t wireBytes);
     /// A tile of interleaving set k handed to a client.
     void noteAssignment(std::uint32_t frame, ClientId client, int k);
+    /// A frame is over (shown, or abandoned when the session ends): it is written out if it was
+    /// shown, and forgotten. Frames close in order; a late copy of a tile of a closed frame
+    /// counts for its client only.
+    void closeFrame(std::uint32_t frame);
 
-    /// Writes {"frames": [...], "clients": [...], "fps": ..., "session": session}. Times are
-    /// seconds from the master's start; rendering ran from renderStart to renderEnd.
+    /// Closes the frames still open and writes {"frames": [...], "clients": [...], "fps": ...,
+    /// "seconds": ..., "session": session}, the frames from the sidecar (which it removes).
+    /// Times are seconds from the master's start; rendering ran from renderStart to renderEnd.
     void writeJson(const std::filesystem::path& path, const nlohmann::json& session,
-                   double renderStart, double renderEnd) const;
+                   double renderStart, double renderEnd);
     /// One line for people watching.
     std::string summaryLine(std::uint32_t frame) const;
     double fps(double totalSeconds) const;
@@ -87,7 +112,11 @@ class Statistics {
     void noteTime(double seconds);
 
   private:
-    std::map<std::uint32_t, FrameStats> frames_;
+    std::map<std::uint32_t, FrameStats> frames_;  ///< the open ones
+    std::uint32_t closedBelow_ = 0;               ///< frames before this one are closed
+    std::uint64_t shownFrames_ = 0;
+    std::filesystem::path framesPath_;  ///< the sidecar, while frames are streamed to it
+    std::ofstream framesOut_;
     std::map<ClientId, ClientStats> clients_;
     std::map<std::uint32_t, std::uint64_t> vplSum_, photonSum_;
     std::deque<double> doneTimes_;  ///< when the last frames were shown

@@ -111,6 +111,9 @@ const std::vector<SkipRule>& skipRules() {
          "one-machine SLURM that it starts"},
         {"", std::regex(R"(^scripts/fault_injection\.sh(\s|$))"),
          "minutes of random kills and stops against running sessions"},
+        {"", std::regex(R"(^(IGI_BUILD=\S+ )?(nice -n \d+ )?scripts/soak\.sh(\s|$))"),
+         "a live session of --minutes M (10 by default, 60 for the recorded run) with random "
+         "changes, faults and a browser; tests/LongSession_test.cpp is its short version"},
         {"docs/FUZZING.md", std::regex(R"(^(CC=clang CXX=clang\+\+ )?cmake\s)"),
          "the clang fuzz build: what the test command (scripts/test.sh) does itself, many "
          "minutes on 2 cores"},
