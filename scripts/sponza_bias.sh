@@ -29,11 +29,12 @@ import json, os, sys
 scene, out = sys.argv[1], sys.argv[2]
 base = json.load(open(scene))
 here = os.path.dirname(os.path.abspath(scene))
-for m in base.get("meshes", []):  # paths relative to the variant's folder
-    m["file"] = os.path.relpath(os.path.join(here, m["file"]), out)
+for m in base.get("meshes", []) + [base.get("environment", {})]:  # relative to the variant
+    if "file" in m:
+        m["file"] = os.path.relpath(os.path.join(here, m["file"]), out)
 variants = {"both": base, "sun": dict(base), "sky": dict(base)}
 variants["sun"].pop("environment", None)
-variants["sky"] = dict(base, lights=[])
+variants["sky"] = dict(base, lights=[])  # (any scene: SCENE=...)
 for name, s in variants.items():
     json.dump(s, open(os.path.join(out, f"sponza-{name}.json"), "w"), indent=1)
 PY
