@@ -276,10 +276,11 @@ void LightingSetBuilder::traceLightPaths(const LightPathNumbers& sampler, PathEn
         const glm::vec2 uDir(sampler.emission(j, 3), sampler.emission(j, 4));
         glm::vec3 origin, direction, beta;  // beta: the flux the path carries
         if (light.directional) {
-            // Parallel light through the disk across the scene's bounding sphere.
+            // Parallel light through the rectangle across it that the scene's box fills.
             direction = light.direction;
-            origin = lights_.diskOrigin(direction, uDir);
-            beta = light.irradiance * lights_.diskArea() / light.select;
+            const Lights::ParallelStart start = lights_.parallelStart(direction, uDir);
+            origin = start.origin;
+            beta = light.irradiance * start.area / light.select;
         } else if (light.spot) {
             // Uniform in the outer cone, weighted by the ramp.
             direction = Frame(light.normal).toWorld(squareToUniformCone(uDir, light.cosOuter));

@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 
+#include <embree3/rtcore.h>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "math/Color.h"
 #include "math/Frame.h"
@@ -93,6 +96,13 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
     }
     center_ = traceable.center();
     radius_ = 0.5f * traceable.diagonal();
+    // The box Embree holds around everything a ray can meet (the placed objects).
+    RTCBounds box;
+    rtcGetSceneBounds(traceable.embreeScene(), &box);
+    boxLo_ = {box.lower_x, box.lower_y, box.lower_z};
+    boxHi_ = {box.upper_x, box.upper_y, box.upper_z};
+    hasBox_ =
+        glm::all(glm::lessThanEqual(boxLo_, boxHi_)) && std::isfinite(glm::length(boxHi_ - boxLo_));
     const float sunDistance = kSunDistance * radius_;
     std::vector<float> treePower = power;  // a directional light's is its far point's
     std::size_t finite = emitters_.size();
@@ -282,6 +292,31 @@ glm::vec3 Lights::diskOrigin(glm::vec3 direction, glm::vec2 u) const {
 
 float Lights::diskArea() const {
     return kPi * radius_ * radius_;
+}
+
+Lights::ParallelStart Lights::parallelStart(glm::vec3 direction, glm::vec2 u) const {
+    const float disk = diskArea();
+    if (hasBox_) {
+        // The box's eight corners seen along `direction`: their extent on the frame's two
+        // axes across it is the rectangle (the frame diskOrigin uses).
+        const Frame frame(direction);
+        glm::vec2 lo(std::numeric_limits<float>::infinity()), hi(-lo);
+        for (int c = 0; c < 8; ++c) {
+            const glm::vec3 corner(c & 1 ? boxHi_.x : boxLo_.x, c & 2 ? boxHi_.y : boxLo_.y,
+                                   c & 4 ? boxHi_.z : boxLo_.z);
+            const glm::vec3 local = frame.toLocal(corner - center_);
+            lo = glm::min(lo, glm::vec2(local.x, local.y));
+            hi = glm::max(hi, glm::vec2(local.x, local.y));
+        }
+        const glm::vec2 size = hi - lo;
+        const float area = size.x * size.y;
+        // A box seen edge-on has no area: its light paths are as few from the disk.
+        if (area > 0 && area < disk) {
+            const glm::vec2 p = lo + u * size;
+            return {center_ + frame.toWorld({p.x, p.y, -1.001f * radius_}), area};
+        }
+    }
+    return {diskOrigin(direction, u), disk};
 }
 
 float Lights::areaPdfAt(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p,

@@ -29,8 +29,8 @@ namespace igi {
 /// irradiance at the scene: every receiver connects to it as to a point light, with a parallax
 /// and a 1/d^2 variation across the scene below 2e-5. A soft sun's (one with an angle, whose
 /// disk is visible) is an area-light sample on the far sphere instead, as the environment's,
-/// so that glossy lobes weigh it against BRDF sampling. Light paths leave either from the disk
-/// across the scene's bounding sphere instead (Lights::diskOrigin), along `direction`.
+/// so that glossy lobes weigh it against BRDF sampling. Light paths leave either from across
+/// the scene instead (Lights::parallelStart), along `direction`.
 struct LightSample {
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f};   ///< emitting side of an area light; a spot light's axis
@@ -87,7 +87,7 @@ class Lights {
 
     /// Total emitted power, summed luminance (for tests and statistics).
     double totalPower() const { return distribution_.total(); }
-    /// Whether some light is directional (light paths then start on diskOrigin's disk).
+    /// Whether some light is directional (light paths then start at parallelStart).
     bool hasDirectional() const { return hasDirectional_; }
     /// The density (solid angle) with which sampleAt(p, n) picks the environment in the
     /// direction `toSky`, for multiple importance sampling; 0 without one.
@@ -105,6 +105,21 @@ class Lights {
     /// `direction`, just outside the sphere. Its area is diskArea().
     glm::vec3 diskOrigin(glm::vec3 direction, glm::vec2 u) const;
     float diskArea() const;
+
+    /// Where a light path of a directional light or of the environment travelling along unit
+    /// `direction` starts, and the area of the region it is uniform on.
+    struct ParallelStart {
+        glm::vec3 origin{0.0f};
+        float area = 0;
+    };
+    /// The start of a parallel light path: uniform by u on the rectangle across `direction`
+    /// that bounds the shadow of the scene's box along it (every line along `direction` that
+    /// meets the scene crosses it), just outside the bounding sphere as diskOrigin's; on that
+    /// disk where the rectangle is not smaller. In an elongated scene the disk of the bounding
+    /// sphere is mostly empty: on the sunlit Sponza 43 % of the sun's paths from it hit nothing
+    /// (the rectangle is 0.6 of the disk there), and the few VPLs of a set are shared by every
+    /// pixel of the frame, so their noise does not average out over the image.
+    ParallelStart parallelStart(glm::vec3 direction, glm::vec2 u) const;
 
   private:
     enum class Kind : std::uint8_t { Triangle, Point, Spot, Directional, Environment };
@@ -140,6 +155,8 @@ class Lights {
     std::uint32_t environmentIndex_ = 0;           ///< its emitter
     glm::vec3 center_{0.0f};                       ///< the scene's bounding sphere
     float radius_ = 1.0f;
+    glm::vec3 boxLo_{0.0f}, boxHi_{0.0f};  ///< the scene's box, for parallelStart
+    bool hasBox_ = false;
     bool hasDirectional_ = false;
 };
 
