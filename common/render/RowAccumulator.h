@@ -34,7 +34,29 @@ class RowAccumulator {
     /// it.
     /// `variance[k]`: the variance of row meanWindow(y).first + k (unused without withdrawBlur
     /// or before two frames).
-    void meanRow(int y, int frames, const double* const* variance, glm::vec3* out,
+    ///
+    /// `error` (if not null, an image row of floats): each pixel's estimated relMSE, the
+    /// expected (mean - truth)^2 / (truth^2 + 0.01) averaged over R, G, B, as igi-compare's
+    /// relative_mse measures it against a reference (kRelativeMseEpsilon); 0 before two
+    /// frames. Without a reference, from the frames' own spread: the sums of the even frames
+    /// (0, 2, 4, ... of the accumulation, nA = ceil(n / 2) of them) are kept beside those of
+    /// all n, so the mean splits into two independent half-means, A of the even frames and B
+    /// of the odd ones (nB = floor(n / 2)), with mean = (nA A + nB B) / n. If the frames are
+    /// independent with variance s^2 each, Var(A) = s^2 / nA, Var(B) = s^2 / nB, and
+    /// E[(A - B)^2] = s^2 (1 / nA + 1 / nB) = s^2 n / (nA nB), while Var(mean) = s^2 / n, so
+    ///     Var(mean) = E[(A - B)^2] nA nB / n^2    (1/4 for an even n).
+    /// With the progressive filter the mean shown is w F + (1 - w) U (F, U the filtered and
+    /// unfiltered means); A and B are blended with the same w, so that their combination is
+    /// still the mean shown exactly. The relMSE's denominator takes the mean shown for the
+    /// truth. What this cannot see: a bias common to all frames (the blur the filter keeps
+    /// where w = 1, the converged estimator's remaining bias), w's own dependence on the data,
+    /// and a denominator that is noisy itself while the mean is (dark pixels after few
+    /// frames). A bias of the first frame alone (the paper's clamp, which the converging
+    /// estimator keeps in frame 0) is seen: it is in A only, so (A - B)^2 nA nB / n^2 holds its
+    /// share b^2 / n^2 of the mean's squared bias (for an even n exactly). One pixel's estimate
+    /// rests on one difference (a chi-square of one degree of freedom): average it over
+    /// pixels (a tile, the image) before deciding anything.
+    void meanRow(int y, int frames, const double* const* variance, glm::vec3* out, float* error,
                  lanes::Isa isa = lanes::bestIsa()) const;
     /// The rows [first, second) whose variance the mean of row y reads.
     std::pair<int, int> meanWindow(int y) const;
@@ -54,7 +76,9 @@ class RowAccumulator {
     int noiseX_ = 1;
     int noiseY_ = 1;
     int blocks_ = 0;  ///< blocks of kPixelsPerBlock pixels per row
-    int fields_ = 3;  ///< sums per pixel: filtered RGB; with withdrawBlur unfiltered RGB and d^2
+    /// Sums per pixel: filtered RGB; with withdrawBlur unfiltered RGB and d^2; then those of
+    /// the even frames, filtered RGB and (with withdrawBlur) unfiltered RGB (meanRow's error).
+    int fields_ = 6;
     std::vector<double> sums_;
 };
 
