@@ -95,12 +95,14 @@ std::string Statistics::summaryLine(std::uint32_t index) const {
     const double mrays = f.seconds > 0 ? double(f.rays) / f.seconds * 1e-6 : 0.0;
     const double bpp = f.pixels ? double(f.wireBytes) / double(f.pixels) : 0.0;
     return fmt::format(
-        "frame {:4d}: {:7.1f} ms, {:6.1f} Mrays/s, {:5.1f} shadow rays/px, {:4.2f} B/px, "
-        "{} tiles ({} duplicate), {} sets built, master decode {:.1f} ms + filter/accumulate "
-        "{:.1f} ms",
-        f.index, f.seconds * 1e3, mrays, f.pixels ? double(f.shadowRays) / double(f.pixels) : 0.0,
-        bpp, f.tiles, f.duplicateTiles, f.setsBuilt, f.decodeSeconds * 1e3,
-        f.compositeSeconds * 1e3);
+               "frame {:4d}: {:7.1f} ms, {:6.1f} Mrays/s, {:5.1f} shadow rays/px, {:4.2f} B/px, "
+               "{} tiles ({} duplicate), {} sets built, master decode {:.1f} ms + "
+               "filter/accumulate "
+               "{:.1f} ms",
+               f.index, f.seconds * 1e3, mrays,
+               f.pixels ? double(f.shadowRays) / double(f.pixels) : 0.0, bpp, f.tiles,
+               f.duplicateTiles, f.setsBuilt, f.decodeSeconds * 1e3, f.compositeSeconds * 1e3) +
+           (f.estimatedRelMse ? fmt::format(", est. relMSE {:.3g}", *f.estimatedRelMse) : "");
 }
 
 void Statistics::writeJson(const std::filesystem::path& path, const nlohmann::json& session,
@@ -128,6 +130,12 @@ void Statistics::writeJson(const std::filesystem::path& path, const nlohmann::js
              {"sets_built", f.setsBuilt},
              {"vpls", f.vplsPerSet},
              {"caustic_photons", f.photonsPerSet}});
+        const auto orNull = [](const std::optional<double>& v) {
+            return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+        };
+        frames.back()["estimated_rel_mse"] = orNull(f.estimatedRelMse);
+        if (f.framesToTarget) frames.back()["predicted_frames_to_target"] = *f.framesToTarget;
+        if (f.secondsToTarget) frames.back()["predicted_seconds_to_target"] = *f.secondsToTarget;
     }
     nlohmann::json clients = nlohmann::json::array();
     for (const auto& [id, c] : clients_) {
