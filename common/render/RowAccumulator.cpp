@@ -91,7 +91,7 @@ IGI_LANES void addRowBody(const Layout& l, std::vector<double>& sums, int y, con
     const D inv = splat<D>(1.0 / (framesBefore + 1.0));
     const D invDegrees = splat<D>(framesBefore > 0 ? 1.0 / framesBefore : 0.0);
     const std::size_t blockBytes = std::size_t(l.fields) * kBlock * sizeof(double);
-    const bool even = framesBefore % 2 == 0;
+    const bool even = RowAccumulator::inFirstHalf(framesBefore);
     for (int b = 0; b < l.blocks; ++b) {
         double* block = l.block(sums, y, b);
         // The sums stream from memory: ask for the blocks a few ahead.
@@ -207,11 +207,11 @@ IGI_LANES void poolVariance(const Pool& p, const double* own, const double* colu
 /// The estimated relMSE of each pixel of row y's mean after `frames` (>= 2) frames, in cell
 /// order, from the sums; `weight`: the filtered mean's weight in the blend (null: 1); `mean`:
 /// the mean's R, G, B as shown (floats, cell order). RowAccumulator::meanRow says why.
-void estimateErrors(const Layout& l, const std::vector<double>& sums, int y, int frames, int width,
-                    const double* weight, float* const* mean, double* error) {
-    // Frames 0, 2, 4, ... went to the even sums: nA of them, the other nB to the odd ones.
-    const double nA = double((frames + 1) / 2), nB = double(frames / 2);
-    const double n = double(frames);
+void estimateErrors(const Layout& l, const std::vector<double>& sums, int y, int frames,
+                    int firstHalf, int width, const double* weight, float* const* mean,
+                    double* error) {
+    // nA frames went to the first half's sums (RowAccumulator::inFirstHalf), nB to the other.
+    const double n = double(frames), nA = double(firstHalf), nB = n - nA;
     // Var(mean) = E[(A - B)^2] nA nB / n^2 (see meanRow); the 1/3 averages the channels.
     const double scale = nA * nB / (n * n) / 3.0;
     for (int i = 0; i < width; ++i) {
@@ -242,6 +242,7 @@ struct Mean {
     int height;
     int noiseX;
     int noiseY;
+    int firstHalf;  ///< frames in the first half's sums, of the `frames` meanRow is asked for
 };
 
 /// Writes row y's estimated error (estimateErrors) in image order to `error` (if any): 0
@@ -250,13 +251,13 @@ void writeErrors(const Mean& m, const std::vector<double>& sums, int y, int fram
                  const double* weight, float* const* mean, float* error) {
     if (!error) return;
     const int width = m.order.width();
-    if (frames < 2) {
+    if (frames < 2 || m.firstHalf < 1 || m.firstHalf >= frames) {  // a half without a frame
         std::fill_n(error, width, 0.0f);
         return;
     }
     thread_local std::vector<double> cells;
     cells.resize(std::size_t(width));
-    estimateErrors(m.l, sums, y, frames, width, weight, mean, cells.data());
+    estimateErrors(m.l, sums, y, frames, m.firstHalf, width, weight, mean, cells.data());
     for (int x = 0; x < width; ++x) error[x] = float(cells[std::size_t(m.order.position(x))]);
 }
 
@@ -363,6 +364,7 @@ void RowAccumulator::reset(const CellOrder& order, int height, bool withdrawBlur
     order_ = order;
     height_ = height;
     frames_ = 0;
+    firstHalf_ = 0;
     withdrawBlur_ = withdrawBlur;
     noiseX_ = std::max(1, noiseX);
     noiseY_ = std::max(1, noiseY);
@@ -390,11 +392,23 @@ void RowAccumulator::varianceRow(int y, int frames, double* variance, Isa isa) c
 void RowAccumulator::meanRow(int y, int frames, const double* const* variance, glm::vec3* out,
                              float* error, Isa isa) const {
     const Layout l{blocks_, fields_, withdrawBlur_, withdrawBlur_ ? kEvenWithdraw : kEvenPlain};
-    const Mean m{l, order_, height_, noiseX_, noiseY_};
+    // Before endFrame, `frames` = frames() + 1 counts the frame being added.
+    const int firstHalf = firstHalf_ + (frames > frames_ && inFirstHalf(frames_) ? 1 : 0);
+    const Mean m{l, order_, height_, noiseX_, noiseY_, firstHalf};
 #if IGI_HAS_AVX2_TARGET
     if (isa == Isa::kAvx2) return meanRowAvx2(m, sums_, y, frames, variance, out, error);
 #endif
     meanRowBaseline(m, sums_, y, frames, variance, out, error);
+}
+
+bool RowAccumulator::inFirstHalf(int frame) {
+    // One frame of each pair (2i, 2i + 1) to each half, so that the halves never differ by
+    // more than a frame; which one by a bit of splitmix64's finalizer of i, a pattern that
+    // neither the frame's parity nor its Sobol' bits follow.
+    std::uint64_t z = std::uint64_t(frame >> 1) + 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return ((z ^ (z >> 31)) & 1u) == std::uint64_t(frame & 1);
 }
 
 std::pair<int, int> RowAccumulator::meanWindow(int y) const {

@@ -187,9 +187,9 @@ TEST(RowAccumulator, EstimatesTheRelMseOfNoiseOfAKnownSpread) {
         }
 }
 
-// A bias of the first frame alone (the paper's clamp in frame 0 of an accumulation) is in the
-// even half-mean only: with no noise at all, the estimate after an even number of frames is
-// exactly the mean's squared bias b^2 / n^2, relative.
+// A bias of the first frame alone (the paper's clamp in frame 0 of an accumulation) is in one
+// half-mean only: with no noise at all, the estimate is the mean's squared bias b^2 / n^2,
+// relative, times the ratio of the halves' frame counts (1 when they are equal).
 TEST(RowAccumulator, SeesTheFirstFramesBias) {
     const int w = 16, h = 8;
     const CellOrder order(w, 1);
@@ -197,12 +197,20 @@ TEST(RowAccumulator, SeesTheFirstFramesBias) {
     rows.reset(order, h, false);
     const float truth = 1.0f, bias = -0.3f;
     std::vector<glm::vec3> frame(std::size_t(w) * h);
-    for (int n = 1; n <= 8; ++n) {
+    for (int n = 1; n <= 12; ++n) {
         std::fill(frame.begin(), frame.end(), glm::vec3(n == 1 ? truth + bias : truth));
         const double estimate = addAndEstimate(rows, order, w, h, frame, frame);
-        if (n % 2) continue;
+        int nA = 0;
+        for (int k = 0; k < n; ++k) nA += RowAccumulator::inFirstHalf(k);
+        if (nA == 0 || nA == n) {
+            EXPECT_EQ(estimate, 0.0) << "a half without a frame has no spread";
+            continue;
+        }
+        // Frame 0's half holds its bias: (A - B)^2 nA nB / n^2 = b^2 / n^2 x (other / own).
+        const double own = RowAccumulator::inFirstHalf(0) ? nA : n - nA, other = n - own;
         const double shown = truth + bias / n;
-        const double expected = (double(bias) / n) * (bias / n) / (shown * shown + 0.01);
+        const double expected =
+            (double(bias) / n) * (bias / n) * (other / own) / (shown * shown + 0.01);
         EXPECT_NEAR(estimate, expected, 1e-6 * expected) << n << " frames";
     }
 }
