@@ -56,7 +56,8 @@ FrameCompositor::FrameCompositor(int width, int height, const RenderSettings& se
       order_(width, settings.interleaveX),
       rowsPerBlock_(rowsPerBlock(height, int(pool.size()))),
       filtered_(width, height),
-      shown_(accumulate_ ? width : 0, accumulate_ ? height : 0) {
+      shown_(accumulate_ ? width : 0, accumulate_ ? height : 0),
+      pixelError_(accumulate_ ? std::size_t(width) * height : 0, 0.0f) {
     if (filter_.sizeY > FilterWindow::kMaxRows)
         throw std::invalid_argument("filter window taller than " +
                                     std::to_string(FilterWindow::kMaxRows) + " rows");
@@ -121,7 +122,8 @@ const Image& FrameCompositor::composite(const RowSource& source, bool glossy) {
                     w.window[std::size_t(k)] =
                         w.variance[std::size_t(first + k) % w.variance.size()].data();
                 accumulator_.meanRow(next, after, w.window.data(),
-                                     shown_.pixels.data() + std::size_t(next) * width_);
+                                     shown_.pixels.data() + std::size_t(next) * width_,
+                                     pixelError_.data() + std::size_t(next) * width_);
             }
         }
         streamedStoresDone();  // the means, before another thread reads them
@@ -140,14 +142,31 @@ const Image& FrameCompositor::composite(const RowSource& source, bool glossy) {
                 w->window[std::size_t(k)] = w->variance[std::size_t(k)].data();
             }
             accumulator_.meanRow(y, after, w->window.data(),
-                                 shown_.pixels.data() + std::size_t(y) * width_);
+                                 shown_.pixels.data() + std::size_t(y) * width_,
+                                 pixelError_.data() + std::size_t(y) * width_);
         }
         streamedStoresDone();
     });
+    double sum = 0.0;
+    for (const float e : pixelError_) sum += e;
+    estimatedRelMse_ = pixelError_.empty() ? 0.0 : sum / double(pixelError_.size());
     return shown_;
 }
 
+double FrameCompositor::estimatedRelMse(const Tile& tile) const {
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (int y = tile.y0; y < std::min(height_, tile.y0 + tile.height); ++y)
+        for (int x = tile.x0; x < std::min(width_, tile.x0 + tile.width); ++x) {
+            sum += pixelError_[std::size_t(y) * width_ + x];
+            ++count;
+        }
+    return count ? sum / double(count) : 0.0;
+}
+
 void FrameCompositor::resetAccumulation() {
+    std::fill(pixelError_.begin(), pixelError_.end(), 0.0f);
+    estimatedRelMse_ = 0.0;
     accumulator_.reset(order_, height_, accumulator_.withdrawsBlur(), filter_.sizeX, filter_.sizeY);
 }
 

@@ -10,6 +10,7 @@
 #include "render/FrameRow.h"
 #include "render/RenderSettings.h"
 #include "render/RowAccumulator.h"
+#include "render/Tile.h"
 #include "util/ThreadPool.h"
 
 namespace igi {
@@ -35,6 +36,16 @@ class FrameCompositor {
     int accumulatedFrames() const { return accumulator_.frames(); }
     /// What composite() last returned: the accumulated mean, or the last frame.
     const Image& shown() const { return accumulate_ ? shown_ : filtered_; }
+    /// The accumulated mean's relMSE as estimated from the frames' spread, without a reference
+    /// (RowAccumulator::meanRow derives it): the mean over the image's pixels. 0 before two
+    /// frames are in, and without accumulation.
+    double estimatedRelMse() const { return estimatedRelMse_; }
+    /// The same over the pixels of the region of `tile` (all its cells: what one tile of every
+    /// set renders).
+    double estimatedRelMse(const Tile& tile) const;
+    /// Each pixel's estimate (row-major; empty without accumulation). One pixel's rests on one
+    /// difference of two half-means: average it over a region before trusting it.
+    const std::vector<float>& pixelRelMse() const { return pixelError_; }
 
   private:
     /// Fills `row` with row y of the frame being composited (in order_).
@@ -53,6 +64,8 @@ class FrameCompositor {
     RowAccumulator accumulator_;
     Image filtered_;  ///< the last frame, filtered: what is shown without accumulation
     Image shown_;
+    std::vector<float> pixelError_;  ///< estimated relMSE per pixel (accumulating)
+    double estimatedRelMse_ = 0.0;
 };
 
 }  // namespace igi

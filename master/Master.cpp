@@ -332,6 +332,29 @@ void Master::noteShown(std::uint32_t f) {
     fs.epoch = frames_.at(f)->epoch;
     fs.accumulated = std::uint32_t(compositor_->accumulatedFrames());
     fs.shown = true;
+    if (fs.accumulated <= 1) forecast_.reset();  // a new accumulation
+    shownError_ = {};
+    shownError_.accumulated = int(fs.accumulated);
+    if (fs.accumulated >= 2) {
+        fs.estimatedRelMse = compositor_->estimatedRelMse();
+        shownError_.image = *fs.estimatedRelMse;
+        // Per tile region (the cells of one region share its pixels): the worst, and how many
+        // are still above the target.
+        for (const Tile& t : scheduler_->layout()) {
+            if (t.kx != 0 || t.ky != 0) continue;
+            const double e = compositor_->estimatedRelMse(t);
+            shownError_.worstTile = std::max(shownError_.worstTile, e);
+            shownError_.tilesAbove += options_.targetError > 0 && e > options_.targetError;
+            ++shownError_.regions;
+        }
+        forecast_.add(int(fs.accumulated), shownError_.image);
+        if (options_.targetError > 0) {
+            if (const auto frames = forecast_.framesTo(options_.targetError))
+                fs.framesToTarget = *frames;
+            if (const auto s = forecast_.secondsTo(options_.targetError, stats_.recentFps()))
+                fs.secondsToTarget = *s;
+        }
+    }
 }
 
 void Master::onComposited(std::uint32_t f, double seconds) {
@@ -350,7 +373,9 @@ void Master::onComposited(std::uint32_t f, double seconds) {
                 paced && logged && framePace_.skippedBefore() > 0
                     ? fmt::format(" ({} frames since the last line)", framePace_.skippedBefore())
                     : "");
-    if (progress_) progress_->update(int(f + 1), stats_.recentFps(), roster_->readyCount());
+    if (progress_)
+        progress_->update(int(f + 1), stats_.recentFps(), roster_->readyCount(),
+                          forecast_.describe(options_.targetError, stats_.recentFps()));
     outputs_->writeFrameImages(f);
     publishToView(f);
     stats_.closeFrame(f);
@@ -359,9 +384,13 @@ void Master::onComposited(std::uint32_t f, double seconds) {
     spareBuffers_.push_back(std::move(frames_.at(f)->buffer));
     frames_.erase(f);
     ++nextFrameToFinish_;
-    if (!framesLeft(nextFrameToFinish_)) {
+    if (options_.frames > 0 && nextFrameToFinish_ >= std::uint32_t(options_.frames)) {
         stop();
         return;
+    }
+    if (const std::string why = limitReached(); !why.empty()) {
+        endRendering(why);
+        if (ending_) return;
     }
     finishReadyFrames();
     dispatch();
@@ -413,14 +442,80 @@ void Master::scheduleTick() {
         // clients pick up copies of tiles that have been out too long.
         if (++ticks_ % 50 == 0) roster_->sendHeartbeats();
         stats_.noteTime(secondsSince(created_));  // igi-ctl status's rates
+        // A time limit ends the rendering mid-frame too: the frames in flight are dropped.
+        if (started_ && options_.timeLimitSeconds > 0 && !renderingEnded_ &&
+            renderSeconds() >= options_.timeLimitSeconds) {
+            endRendering(limitReached());
+            if (ending_) return;
+        }
         dispatch();
         scheduleTick();
     });
 }
 
 void Master::stop() {
-    renderEnd_ = Clock::now();
+    if (!renderingEnded_) renderEnd_ = Clock::now();
     endSession(0);
+}
+
+double Master::renderSeconds() const {
+    if (!started_) return 0.0;
+    const Clock::time_point end = renderingEnded_ || ending_ ? renderEnd_ : Clock::now();
+    return std::max(0.0, std::chrono::duration<double>(end - renderStart_).count());
+}
+
+std::string Master::limitReached() const {
+    if (!started_ || renderingEnded_) return {};
+    const int accumulated = shownError_.accumulated;
+    // Called as each frame is shown (and by the tick): the first frame whose estimate is at
+    // or below the target ends the rendering, with its image.
+    if (options_.targetError > 0 && accumulated >= 2 && shownError_.image <= options_.targetError)
+        return fmt::format("estimated relMSE {:.3g} <= --target-error {:.3g} after {} frames",
+                           shownError_.image, options_.targetError, accumulated);
+    if (options_.timeLimitSeconds > 0 && renderSeconds() >= options_.timeLimitSeconds)
+        return fmt::format("--time-limit {:g} s reached after {} frames", options_.timeLimitSeconds,
+                           nextFrameToFinish_);
+    return {};
+}
+
+void Master::endRendering(const std::string& why) {
+    if (options_.frames == 0 && (control_ || options_.view)) {
+        renderEnd_ = Clock::now();
+        renderingEnded_ = true;
+        spdlog::info("{}: rendering ends; the session stays live, idle (igi-ctl stop ends it)",
+                     why);
+        return;
+    }
+    spdlog::info("{}: ending the session", why);
+    stop();
+}
+
+nlohmann::json Master::errorJson() const {
+    const auto orNull = [](const std::optional<double>& v) {
+        return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+    };
+    // From the image shown last (noteShown): the compositor may be adding the next frame now,
+    // on the pool.
+    nlohmann::json j = {
+        {"estimated_rel_mse",
+         shownError_.accumulated >= 2 ? nlohmann::json(shownError_.image) : nlohmann::json()},
+        {"target_error",
+         options_.targetError > 0 ? nlohmann::json(options_.targetError) : nlohmann::json()},
+        {"time_limit_s", options_.timeLimitSeconds > 0 ? nlohmann::json(options_.timeLimitSeconds)
+                                                       : nlohmann::json()},
+        {"render_seconds", renderSeconds()},
+        {"rendering", renderingEnded_ ? "idle" : (started_ ? "running" : "waiting")}};
+    if (shownError_.accumulated >= 2) {
+        j["worst_tile_rel_mse"] = shownError_.worstTile;
+        if (options_.targetError > 0)
+            j["tiles_above_target"] = {shownError_.tilesAbove, shownError_.regions};
+    }
+    if (options_.targetError > 0) {
+        j["predicted_frames_to_target"] = orNull(forecast_.framesTo(options_.targetError));
+        j["predicted_seconds_to_target"] =
+            orNull(forecast_.secondsTo(options_.targetError, stats_.recentFps()));
+    }
+    return j;
 }
 
 void Master::endSession(int exitCode) {

@@ -15,6 +15,7 @@
 #include "ClientRoster.h"
 #include "CodedFrame.h"
 #include "ControlServer.h"
+#include "ErrorForecast.h"
 #include "FrameCompositor.h"
 #include "FrameLogPace.h"
 #include "FrameOutputs.h"
@@ -83,6 +84,14 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     std::uint32_t framesDone() const override { return nextFrameToFinish_; }
     std::uint32_t nextFrame() const override { return nextFrameToOpen_; }
     void stop() override;
+    nlohmann::json errorJson() const override;
+
+    /// Why rendering should end now (--target-error met, --time-limit up), or empty.
+    std::string limitReached() const;
+    /// Ends the rendering for `why`: the session too, unless it is a live one (--frames 0
+    /// with a control port or the web view), which stays, idle, until stopped.
+    void endRendering(const std::string& why);
+    double renderSeconds() const;
 
     void onTileDecoded(ClientId id, std::uint32_t frame, std::uint32_t tile,
                        const std::string& error, const proto::TileStats& tileStats,
@@ -92,7 +101,7 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     void noteShown(std::uint32_t frame);
     void publishToView(std::uint32_t frame);
     bool framesLeft(std::uint32_t frame) const {
-        return options_.frames == 0 || frame < std::uint32_t(options_.frames);
+        return !renderingEnded_ && (options_.frames == 0 || frame < std::uint32_t(options_.frames));
     }
 
     void maybeStart();
@@ -138,6 +147,19 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     std::uint64_t ticks_ = 0;
     bool started_ = false;
     bool ending_ = false;
+    /// A live session reached its target error or time limit: no more frames are opened.
+    bool renderingEnded_ = false;
+    ErrorForecast forecast_;  ///< of the current accumulation
+    /// The error estimate of the image shown last, kept when it was shown: the compositor's
+    /// own figures change while it adds the next frame on the pool.
+    struct ShownError {
+        int accumulated = 0;
+        double image = 0;
+        double worstTile = 0;  ///< the largest over the tile regions
+        int tilesAbove = 0;    ///< regions above --target-error
+        int regions = 0;
+    };
+    ShownError shownError_;
     int exitCode_ = 0;
     std::chrono::steady_clock::time_point created_;
     std::chrono::steady_clock::time_point renderStart_;

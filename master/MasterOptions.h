@@ -12,6 +12,11 @@ struct MasterOptions {
     std::filesystem::path scene;
     std::vector<std::filesystem::path> outputs;  ///< .png and/or .exr, written at the end
     int frames = 1;  ///< 0: until stopped (control "stop", SIGINT or SIGTERM)
+    /// Rendering ends once the accumulated image's estimated relMSE (FrameCompositor) is at or
+    /// below this (0: no target), or after timeLimitSeconds of rendering (0: no limit), or
+    /// after `frames`, whichever comes first.
+    double targetError = 0;
+    double timeLimitSeconds = 0;
     /// --frames was given; without it, an --animation runs to its last keyframe.
     bool framesGiven = false;
     std::filesystem::path animation;  ///< keyframes applied frame by frame (docs/ANIMATION.md)

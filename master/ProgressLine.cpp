@@ -43,8 +43,8 @@ class ProgressSink : public spdlog::sinks::base_sink<std::mutex> {
     std::string line_;
 };
 
-std::shared_ptr<ProgressLine> ProgressLine::attachIfTerminal(int totalFrames) {
-    if (totalFrames <= 0 || !isatty(STDERR_FILENO)) return nullptr;
+std::shared_ptr<ProgressLine> ProgressLine::attachIfTerminal(int totalFrames, bool limited) {
+    if ((totalFrames <= 0 && !limited) || !isatty(STDERR_FILENO)) return nullptr;
     auto sink = std::make_shared<ProgressSink>();
     auto& sinks = spdlog::default_logger()->sinks();
     sinks.clear();
@@ -55,8 +55,9 @@ std::shared_ptr<ProgressLine> ProgressLine::attachIfTerminal(int totalFrames) {
 ProgressLine::ProgressLine(int totalFrames, std::shared_ptr<ProgressSink> sink)
     : totalFrames_(totalFrames), sink_(std::move(sink)) {}
 
-void ProgressLine::update(int framesDone, double fps, int clients) {
-    sink_->setLine(format(framesDone, totalFrames_, fps, clients));
+void ProgressLine::update(int framesDone, double fps, int clients, const std::string& error) {
+    const std::string line = format(framesDone, totalFrames_, fps, clients);
+    sink_->setLine(error.empty() ? line : line + ", " + error);
 }
 
 void ProgressLine::finish() {
@@ -64,6 +65,9 @@ void ProgressLine::finish() {
 }
 
 std::string ProgressLine::format(int framesDone, int totalFrames, double fps, int clients) {
+    if (totalFrames <= 0)  // ended by a target or a time limit: no total to count down
+        return fmt::format("frame {} {:.2f} fps, {} client{}", framesDone, fps, clients,
+                           clients == 1 ? "" : "s");
     constexpr int kBar = 20;
     const int filled = totalFrames > 0 ? kBar * framesDone / totalFrames : 0;
     std::string bar(std::size_t(filled), '=');

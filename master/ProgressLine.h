@@ -19,10 +19,14 @@ class ProgressLine {
   public:
     /// A progress line on stderr when stderr is a terminal and `totalFrames` > 0; else none.
     /// Replaces the default logger's sinks: call before setting the log pattern.
-    static std::shared_ptr<ProgressLine> attachIfTerminal(int totalFrames);
+    /// `limited`: a target error or a time limit ends the run, so a line is drawn also
+    /// without a frame total.
+    static std::shared_ptr<ProgressLine> attachIfTerminal(int totalFrames, bool limited = false);
 
     explicit ProgressLine(int totalFrames, std::shared_ptr<ProgressSink> sink);
-    void update(int framesDone, double fps, int clients);
+    /// `error`: the estimated error and the time to the target (ErrorForecast::describe),
+    /// appended when not empty.
+    void update(int framesDone, double fps, int clients, const std::string& error = {});
     /// The run's length, once known (an --animation without --frames runs to its end).
     void setTotalFrames(int totalFrames) { totalFrames_ = totalFrames; }
     /// Leaves the last state on its own line.

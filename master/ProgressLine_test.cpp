@@ -15,6 +15,8 @@ TEST(ProgressLine, SaysFramesRateTimeLeftAndClients) {
               "frame 0/10 [>                   ] 0.00 fps, ? left, 3 clients");
     EXPECT_EQ(ProgressLine::format(0, 1000, 2, 1),
               "frame 0/1000 [>                   ] 2.00 fps, 9 min left, 1 client");
+    // A run that a target error or a time limit ends has no total.
+    EXPECT_EQ(ProgressLine::format(7, 0, 2, 2), "frame 7 2.00 fps, 2 clients");
 }
 
 }  // namespace

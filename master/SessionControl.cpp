@@ -133,19 +133,21 @@ nlohmann::json SessionControl::statusJson() {
              {"tiles_per_s", tiles == rates.tilesPerSecond.end() ? 0.0 : tiles->second},
              {"mrays_per_s", rays == rates.raysPerSecond.end() ? 0.0 : rays->second * 1e-6}});
     }
-    return {{"frames_done", frames_.framesDone()},
-            {"frames_total", options_.frames},
-            {"epoch", timeline_.epoch()},
-            {"accumulated", compositor_.accumulatedFrames()},
-            {"clients", roster_.readyCount()},
-            {"client_list", clients},
-            {"fps", stats_.recentFps()},
-            {"wire_mb_per_s", rates.wireBytesPerSecond * 1e-6},
-            {"camera", cameraJson(timeline_.controlled().camera)},
-            {"exposure", scene_.image.exposure},
-            {"width", scene_.image.width},
-            {"height", scene_.image.height},
-            {"settings", settingsJson(scene_.render)}};
+    nlohmann::json status = {{"frames_done", frames_.framesDone()},
+                             {"frames_total", options_.frames},
+                             {"epoch", timeline_.epoch()},
+                             {"accumulated", compositor_.accumulatedFrames()},
+                             {"clients", roster_.readyCount()},
+                             {"client_list", clients},
+                             {"fps", stats_.recentFps()},
+                             {"wire_mb_per_s", rates.wireBytesPerSecond * 1e-6},
+                             {"camera", cameraJson(timeline_.controlled().camera)},
+                             {"exposure", scene_.image.exposure},
+                             {"width", scene_.image.width},
+                             {"height", scene_.image.height},
+                             {"settings", settingsJson(scene_.render)}};
+    status.update(frames_.errorJson());
+    return status;
 }
 
 nlohmann::json SessionControl::sceneJson() const {

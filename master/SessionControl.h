@@ -32,6 +32,8 @@ class SessionControl {
         virtual std::uint32_t nextFrame() const = 0;
         /// Ends the session after the frames done (the command has been answered).
         virtual void stop() = 0;
+        /// The error estimate and the limits: merged into the status (Master::errorJson).
+        virtual nlohmann::json errorJson() const = 0;
     };
 
     /// `created`: when the session began (the statistics' clock).

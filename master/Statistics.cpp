@@ -11,24 +11,29 @@ namespace igi {
 namespace {
 
 nlohmann::json frameJson(const FrameStats& f) {
-    return {{"index", f.index},
-            {"seconds", f.seconds},
-            {"composite_seconds", f.compositeSeconds},
-            {"decode_seconds", f.decodeSeconds},
-            {"epoch", f.epoch},
-            {"accumulated", f.accumulated},
+    nlohmann::json j = {
+        {"index", f.index},
+        {"seconds", f.seconds},
+        {"composite_seconds", f.compositeSeconds},
+        {"decode_seconds", f.decodeSeconds},
+        {"epoch", f.epoch},
+        {"accumulated", f.accumulated},
 
-            {"rays", f.rays},
-            {"shadow_rays", f.shadowRays},
-            {"shadow_rays_per_pixel", f.pixels ? double(f.shadowRays) / double(f.pixels) : 0.0},
-            {"wire_bytes", f.wireBytes},
-            {"wire_bytes_per_pixel", f.pixels ? double(f.wireBytes) / double(f.pixels) : 0.0},
-            {"pixels", f.pixels},
-            {"tiles", f.tiles},
-            {"duplicate_tiles", f.duplicateTiles},
-            {"sets_built", f.setsBuilt},
-            {"vpls", f.vplsPerSet},
-            {"caustic_photons", f.photonsPerSet}};
+        {"rays", f.rays},
+        {"shadow_rays", f.shadowRays},
+        {"shadow_rays_per_pixel", f.pixels ? double(f.shadowRays) / double(f.pixels) : 0.0},
+        {"wire_bytes", f.wireBytes},
+        {"wire_bytes_per_pixel", f.pixels ? double(f.wireBytes) / double(f.pixels) : 0.0},
+        {"pixels", f.pixels},
+        {"tiles", f.tiles},
+        {"duplicate_tiles", f.duplicateTiles},
+        {"sets_built", f.setsBuilt},
+        {"vpls", f.vplsPerSet},
+        {"caustic_photons", f.photonsPerSet}};
+    j["estimated_rel_mse"] = f.estimatedRelMse ? nlohmann::json(*f.estimatedRelMse) : nullptr;
+    if (f.framesToTarget) j["predicted_frames_to_target"] = *f.framesToTarget;
+    if (f.secondsToTarget) j["predicted_seconds_to_target"] = *f.secondsToTarget;
+    return j;
 }
 
 }  // namespace
@@ -163,12 +168,14 @@ std::string Statistics::summaryLine(std::uint32_t index) const {
     const double mrays = f.seconds > 0 ? double(f.rays) / f.seconds * 1e-6 : 0.0;
     const double bpp = f.pixels ? double(f.wireBytes) / double(f.pixels) : 0.0;
     return fmt::format(
-        "frame {:4d}: {:7.1f} ms, {:6.1f} Mrays/s, {:5.1f} shadow rays/px, {:4.2f} B/px, "
-        "{} tiles ({} duplicate), {} sets built, master decode {:.1f} ms + filter/accumulate "
-        "{:.1f} ms",
-        f.index, f.seconds * 1e3, mrays, f.pixels ? double(f.shadowRays) / double(f.pixels) : 0.0,
-        bpp, f.tiles, f.duplicateTiles, f.setsBuilt, f.decodeSeconds * 1e3,
-        f.compositeSeconds * 1e3);
+               "frame {:4d}: {:7.1f} ms, {:6.1f} Mrays/s, {:5.1f} shadow rays/px, {:4.2f} B/px, "
+               "{} tiles ({} duplicate), {} sets built, master decode {:.1f} ms + "
+               "filter/accumulate "
+               "{:.1f} ms",
+               f.index, f.seconds * 1e3, mrays,
+               f.pixels ? double(f.shadowRays) / double(f.pixels) : 0.0, bpp, f.tiles,
+               f.duplicateTiles, f.setsBuilt, f.decodeSeconds * 1e3, f.compositeSeconds * 1e3) +
+           (f.estimatedRelMse ? fmt::format(", est. relMSE {:.3g}", *f.estimatedRelMse) : "");
 }
 
 void Statistics::writeJson(const std::filesystem::path& path, const nlohmann::json& session,

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -34,6 +35,11 @@ struct FrameStats {
     std::uint32_t setsBuilt = 0;
     double vplsPerSet = 0;     ///< mean over the frame's tiles
     double photonsPerSet = 0;  ///< mean over the frame's tiles
+    /// The accumulated image's relMSE estimated without a reference (FrameCompositor), from
+    /// two frames in on; with --target-error, the frames and seconds to it (ErrorForecast).
+    std::optional<double> estimatedRelMse;
+    std::optional<double> framesToTarget;
+    std::optional<double> secondsToTarget;
     /// Composited and shown. A session stopped mid-frame leaves frames that were in flight
     /// (with tiles counted): they are not reported as frames.
     bool shown = false;

@@ -9,7 +9,9 @@
 #include <unistd.h>
 
 #include <charconv>
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
 
 #include "BuildId.h"
 #include "Master.h"
@@ -52,6 +54,21 @@ CLI::Validator wholeNumber() {
         "");
 }
 
+// --target-error, --time-limit: a finite number above 0 (CLI11's Range lets "nan" through,
+// and "1e" or "abc" would otherwise say only "Could not convert").
+CLI::Validator positiveNumber() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double value = std::strtod(text.c_str(), &end);
+            if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value) ||
+                !(value > 0))
+                return "expected a number above 0, got '" + text + "'";
+            return "";
+        },
+        "");
+}
+
 // A seed: all of 0 .. 2^64 - 1, digits only.
 std::uint64_t parseSeed(const std::string& text) {
     std::uint64_t seed = 0;
@@ -89,6 +106,14 @@ int main(int argc, char** argv) {
                        "default 1, or an --animation's length)")
             ->check(wholeNumber())
             ->check(CLI::Range(0, 1 << 24));
+    app.add_option("--target-error", o.targetError,
+                   "stop once the image's estimated relMSE (docs/ERROR_ESTIMATE.md) is at or "
+                   "below this, e.g. 0.001")
+        ->check(positiveNumber());
+    app.add_option("--time-limit", o.timeLimitSeconds,
+                   "stop after this many seconds of rendering (with --frames and --target-error: "
+                   "whichever comes first)")
+        ->check(positiveNumber());
     app.add_option("--animation", o.animation,
                    "keyframed changes applied frame by frame (docs/ANIMATION.md)");
     app.add_option("--output-sequence", o.outputSequence,
@@ -301,8 +326,10 @@ int main(int argc, char** argv) {
 
     // On a terminal, a finite run draws a progress line under the log (before the pattern is
     // set: it replaces the logger's sink).
-    auto progress = igi::ProgressLine::attachIfTerminal(o.frames);
-    o.paceFrameLines = o.frames == 0 && isatty(STDERR_FILENO);
+    // A target or a time limit ends a run too: it gets the line (with no frame total).
+    const bool limited = o.targetError > 0 || o.timeLimitSeconds > 0;
+    auto progress = igi::ProgressLine::attachIfTerminal(o.frames, limited);
+    o.paceFrameLines = o.frames == 0 && !limited && isatty(STDERR_FILENO);
     spdlog::set_level(spdlog::level::from_str(logLevel));
     spdlog::set_pattern("[%H:%M:%S.%e] [master] [%l] %v");
     o.scene = scene;

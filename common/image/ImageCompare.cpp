@@ -87,7 +87,7 @@ ImageDifference compareImages(const Image& image, const Image& reference, int bl
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
         for (int c = 0; c < 3; ++c) {
             const double a = image.pixels[i][c], r = reference.pixels[i][c];
-            rel += (a - r) * (a - r) / (r * r + 0.01);
+            rel += (a - r) * (a - r) / (r * r + kRelativeMseEpsilon);
             sq += (a - r) * (a - r);
             sumA += a;
             sumR += r;

@@ -21,6 +21,9 @@ struct ImageDifference {
     double speckle = 0;
 };
 
+/// relativeMse's 0.01: in the denominator (r^2 + 0.01), also of the master's estimate of it
+/// (RowAccumulator::meanRow), so that the two are the same measure.
+inline constexpr double kRelativeMseEpsilon = 0.01;
 /// Speckle: a pixel brighter than this multiple of the reference (strictly more).
 inline constexpr double kSpeckleRatio = 4.0;
 /// Speckle ignores pixels whose reference luminance is below this fraction of the mean.

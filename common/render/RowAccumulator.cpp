@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <type_traits>
 
+#include "image/ImageCompare.h"
 #include "render/Accumulator.h"
 #include "render/DiscontinuityFilter.h"
 
@@ -22,6 +23,10 @@ constexpr int kBlock = 8;          // RowAccumulator::kPixelsPerBlock
 constexpr int kFilteredSum = 0;    // 3 fields: R, G, B of the filtered frames
 constexpr int kUnfilteredSum = 3;  // 3 fields, with withdrawBlur
 constexpr int kDifference2 = 6;    // sum of (lum filtered - lum unfiltered)^2, with withdrawBlur
+// Then the sums of the even frames (0, 2, 4, ... of the accumulation): 3 fields of the filtered
+// frames and, with withdrawBlur, 3 of the unfiltered ones (RowAccumulator::meanRow's error).
+constexpr int kEvenWithdraw = 7;
+constexpr int kEvenPlain = 3;
 
 /// Accumulator's luminance(glm::vec3) in float, and luminance(glm::dvec3) in double: the same
 /// literals (a float literal is not always the double one rounded to float).
@@ -58,6 +63,7 @@ struct Layout {
     int blocks;
     int fields;
     bool withdraw;
+    int even;  ///< the first field of the even frames' sums
     double* block(std::vector<double>& sums, int y, int b) const {
         return sums.data() + (std::size_t(y) * blocks + b) * fields * kBlock;
     }
@@ -85,6 +91,7 @@ IGI_LANES void addRowBody(const Layout& l, std::vector<double>& sums, int y, con
     const D inv = splat<D>(1.0 / (framesBefore + 1.0));
     const D invDegrees = splat<D>(framesBefore > 0 ? 1.0 / framesBefore : 0.0);
     const std::size_t blockBytes = std::size_t(l.fields) * kBlock * sizeof(double);
+    const bool even = RowAccumulator::inFirstHalf(framesBefore);
     for (int b = 0; b < l.blocks; ++b) {
         double* block = l.block(sums, y, b);
         // The sums stream from memory: ask for the blocks a few ahead.
@@ -97,10 +104,14 @@ IGI_LANES void addRowBody(const Layout& l, std::vector<double>& sums, int y, con
             const V f[3] = {load<V>(row[S::kFr] + i), load<V>(row[S::kFg] + i),
                             load<V>(row[S::kFb] + i)};
             for (int c = 0; c < 3; ++c) addTo(s + (kFilteredSum + c) * kBlock, f[c]);
+            if (even)
+                for (int c = 0; c < 3; ++c) addTo(s + (l.even + c) * kBlock, f[c]);
             if (!l.withdraw) continue;
             const V u[3] = {load<V>(row[S::kUr] + i), load<V>(row[S::kUg] + i),
                             load<V>(row[S::kUb] + i)};
             for (int c = 0; c < 3; ++c) addTo(s + (kUnfilteredSum + c) * kBlock, u[c]);
+            if (even)
+                for (int c = 0; c < 3; ++c) addTo(s + (l.even + 3 + c) * kBlock, u[c]);
             const V lf = luminance(f[0], f[1], f[2]), lu = luminance(u[0], u[1], u[2]);
             const D d[2] = {lowHalf(lf) - lowHalf(lu), highHalf(lf) - highHalf(lu)};
             double* d2 = s + kDifference2 * kBlock;
@@ -131,6 +142,7 @@ IGI_LANES void varianceRowBody(const Layout& l, const std::vector<double>& sums,
 /// Per-thread arrays of meanRow.
 struct MeanScratch {
     RowPlanes<3> mean;            // the mean's R, G, B in cell order
+    std::vector<double> weight;   // the filtered mean's weight in the blend (withdrawBlur)
     std::vector<double> columns;  // the window's variances summed down its rows
     std::vector<double> pooled;   // the larger of a pixel's variance and its window's mean
 };
@@ -140,6 +152,7 @@ MeanScratch& meanScratch(const CellOrder& order, std::size_t entries) {
     scratch.mean.resize(order.width());
     scratch.columns.resize(entries + kBlock);
     scratch.pooled.resize(entries + kBlock);
+    scratch.weight.resize(entries + kBlock);
     return scratch;
 }
 
@@ -191,17 +204,66 @@ IGI_LANES void poolVariance(const Pool& p, const double* own, const double* colu
     }
 }
 
+/// The estimated relMSE of each pixel of row y's mean after `frames` (>= 2) frames, in cell
+/// order, from the sums; `weight`: the filtered mean's weight in the blend (null: 1); `mean`:
+/// the mean's R, G, B as shown (floats, cell order). RowAccumulator::meanRow says why.
+void estimateErrors(const Layout& l, const std::vector<double>& sums, int y, int frames,
+                    int firstHalf, int width, const double* weight, float* const* mean,
+                    double* error) {
+    // nA frames went to the first half's sums (RowAccumulator::inFirstHalf), nB to the other.
+    const double n = double(frames), nA = double(firstHalf), nB = n - nA;
+    // Var(mean) = E[(A - B)^2] nA nB / n^2 (see meanRow); the 1/3 averages the channels.
+    const double scale = nA * nB / (n * n) / 3.0;
+    for (int i = 0; i < width; ++i) {
+        const double* s = l.block(sums, y, i / kBlock) + i % kBlock;
+        const double w = weight ? weight[i] : 1.0;
+        double e = 0.0;
+        for (int c = 0; c < 3; ++c) {
+            const double all = s[(kFilteredSum + c) * kBlock], even = s[(l.even + c) * kBlock];
+            double a = even / nA, b = (all - even) / nB;
+            if (l.withdraw && w < 1.0) {
+                // The blend's two halves, with the weight of the whole: the mean shown is
+                // (nA A + nB B) / n exactly.
+                const double uAll = s[(kUnfilteredSum + c) * kBlock];
+                const double uEven = s[(l.even + 3 + c) * kBlock];
+                a = w * a + (1.0 - w) * (uEven / nA);
+                b = w * b + (1.0 - w) * ((uAll - uEven) / nB);
+            }
+            const double shown = mean[c][i];
+            e += (a - b) * (a - b) / (shown * shown + kRelativeMseEpsilon);
+        }
+        error[i] = e * scale;
+    }
+}
+
 struct Mean {
     const Layout& l;
     const CellOrder& order;
     int height;
     int noiseX;
     int noiseY;
+    int firstHalf;  ///< frames in the first half's sums, of the `frames` meanRow is asked for
 };
+
+/// Writes row y's estimated error (estimateErrors) in image order to `error` (if any): 0
+/// before two frames, which give no spread.
+void writeErrors(const Mean& m, const std::vector<double>& sums, int y, int frames,
+                 const double* weight, float* const* mean, float* error) {
+    if (!error) return;
+    const int width = m.order.width();
+    if (frames < 2 || m.firstHalf < 1 || m.firstHalf >= frames) {  // a half without a frame
+        std::fill_n(error, width, 0.0f);
+        return;
+    }
+    thread_local std::vector<double> cells;
+    cells.resize(std::size_t(width));
+    estimateErrors(m.l, sums, y, frames, m.firstHalf, width, weight, mean, cells.data());
+    for (int x = 0; x < width; ++x) error[x] = float(cells[std::size_t(m.order.position(x))]);
+}
 
 template <class V>
 IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y, int frames,
-                           const double* const* variance, glm::vec3* out) {
+                           const double* const* variance, glm::vec3* out, float* error) {
     using D = Half<V>;
     constexpr int kWidth = kLanes<V>, kHalf = kWidth / 2;
     const Layout& l = m.l;
@@ -218,6 +280,7 @@ IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y
                           narrow(loadDoubles<D>(field) * inv, loadDoubles<D>(field + kHalf) * inv));
                 }
             }
+        writeErrors(m, sums, y, frames, nullptr, mean, error);
         return toImageOrderStreamed(m.order, mean[0], mean[1], mean[2], out);
     }
     const D tolerance = splat<D>(Accumulator::blurTolerance(frames));
@@ -256,11 +319,13 @@ IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y
                 const D w =
                     allTrue(keep) ? splat<D>(1.0) : select(keep, splat<D>(1.0), allowed / d2);
                 for (int c = 0; c < 3; ++c) halves[c][h] = w * f[c] + (splat<D>(1.0) - w) * u[c];
+                if (error) store(scratch.weight.data() + b * kBlock + j + h * kHalf, w);
             }
             for (int c = 0; c < 3; ++c)
                 store(mean[c] + b * kBlock + j, narrow(halves[c][0], halves[c][1]));
         }
     }
+    writeErrors(m, sums, y, frames, scratch.weight.data(), mean, error);
     toImageOrderStreamed(m.order, mean[0], mean[1], mean[2], out);
 }
 
@@ -273,8 +338,8 @@ void varianceRowBaseline(const Layout& l, const std::vector<double>& sums, int y
     varianceRowBody<F4>(l, sums, y, frames, variance);
 }
 void meanRowBaseline(const Mean& m, const std::vector<double>& sums, int y, int frames,
-                     const double* const* variance, glm::vec3* out) {
-    meanRowBody<F4>(m, sums, y, frames, variance, out);
+                     const double* const* variance, glm::vec3* out, float* error) {
+    meanRowBody<F4>(m, sums, y, frames, variance, out, error);
 }
 
 #if IGI_HAS_AVX2_TARGET
@@ -287,8 +352,8 @@ IGI_AVX2 void varianceRowAvx2(const Layout& l, const std::vector<double>& sums, 
     varianceRowBody<F8>(l, sums, y, frames, variance);
 }
 IGI_AVX2 void meanRowAvx2(const Mean& m, const std::vector<double>& sums, int y, int frames,
-                          const double* const* variance, glm::vec3* out) {
-    meanRowBody<F8>(m, sums, y, frames, variance, out);
+                          const double* const* variance, glm::vec3* out, float* error) {
+    meanRowBody<F8>(m, sums, y, frames, variance, out, error);
 }
 #endif
 
@@ -299,16 +364,17 @@ void RowAccumulator::reset(const CellOrder& order, int height, bool withdrawBlur
     order_ = order;
     height_ = height;
     frames_ = 0;
+    firstHalf_ = 0;
     withdrawBlur_ = withdrawBlur;
     noiseX_ = std::max(1, noiseX);
     noiseY_ = std::max(1, noiseY);
     blocks_ = (order.width() + kBlock - 1) / kBlock;
-    fields_ = withdrawBlur ? 7 : 3;
+    fields_ = withdrawBlur ? kEvenWithdraw + 6 : kEvenPlain + 3;
     sums_.assign(std::size_t(height) * blocks_ * fields_ * kBlock, 0.0);
 }
 
 void RowAccumulator::addRow(int y, const ShadedRow& row, double* variance, Isa isa) {
-    const Layout l{blocks_, fields_, withdrawBlur_};
+    const Layout l{blocks_, fields_, withdrawBlur_, withdrawBlur_ ? kEvenWithdraw : kEvenPlain};
 #if IGI_HAS_AVX2_TARGET
     if (isa == Isa::kAvx2) return addRowAvx2(l, sums_, y, row, frames_, variance);
 #endif
@@ -316,7 +382,7 @@ void RowAccumulator::addRow(int y, const ShadedRow& row, double* variance, Isa i
 }
 
 void RowAccumulator::varianceRow(int y, int frames, double* variance, Isa isa) const {
-    const Layout l{blocks_, fields_, withdrawBlur_};
+    const Layout l{blocks_, fields_, withdrawBlur_, withdrawBlur_ ? kEvenWithdraw : kEvenPlain};
 #if IGI_HAS_AVX2_TARGET
     if (isa == Isa::kAvx2) return varianceRowAvx2(l, sums_, y, frames, variance);
 #endif
@@ -324,13 +390,25 @@ void RowAccumulator::varianceRow(int y, int frames, double* variance, Isa isa) c
 }
 
 void RowAccumulator::meanRow(int y, int frames, const double* const* variance, glm::vec3* out,
-                             Isa isa) const {
-    const Layout l{blocks_, fields_, withdrawBlur_};
-    const Mean m{l, order_, height_, noiseX_, noiseY_};
+                             float* error, Isa isa) const {
+    const Layout l{blocks_, fields_, withdrawBlur_, withdrawBlur_ ? kEvenWithdraw : kEvenPlain};
+    // Before endFrame, `frames` = frames() + 1 counts the frame being added.
+    const int firstHalf = firstHalf_ + (frames > frames_ && inFirstHalf(frames_) ? 1 : 0);
+    const Mean m{l, order_, height_, noiseX_, noiseY_, firstHalf};
 #if IGI_HAS_AVX2_TARGET
-    if (isa == Isa::kAvx2) return meanRowAvx2(m, sums_, y, frames, variance, out);
+    if (isa == Isa::kAvx2) return meanRowAvx2(m, sums_, y, frames, variance, out, error);
 #endif
-    meanRowBaseline(m, sums_, y, frames, variance, out);
+    meanRowBaseline(m, sums_, y, frames, variance, out, error);
+}
+
+bool RowAccumulator::inFirstHalf(int frame) {
+    // One frame of each pair (2i, 2i + 1) to each half, so that the halves never differ by
+    // more than a frame; which one by a bit of splitmix64's finalizer of i, a pattern that
+    // neither the frame's parity nor its Sobol' bits follow.
+    std::uint64_t z = std::uint64_t(frame >> 1) + 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return ((z ^ (z >> 31)) & 1u) == std::uint64_t(frame & 1);
 }
 
 std::pair<int, int> RowAccumulator::meanWindow(int y) const {

@@ -26,7 +26,19 @@ class RowAccumulator {
     /// Adds row y of a frame (its filtered planes and, with withdrawBlur, its unfiltered ones)
     /// and writes the row's variance after it (varianceEntries() doubles, cell order).
     void addRow(int y, const ShadedRow& row, double* variance, lanes::Isa isa = lanes::bestIsa());
-    void endFrame() { ++frames_; }
+    void endFrame() {
+        firstHalf_ += inFirstHalf(frames_) ? 1 : 0;
+        ++frames_;
+    }
+    /// Whether frame `frame` of an accumulation (0-based) goes to the first of the two halves
+    /// meanRow's error estimate compares: one frame of each pair (2i, 2i + 1) in each half,
+    /// which one pseudo-random.
+    /// Not even against odd frames: the frames' random numbers come from Sobol' points indexed
+    /// by the frame, and the even points of a Sobol' dimension lie in [0, 1/2) and the odd ones
+    /// in [1/2, 1), so even and odd frames sample different halves of the domain and their
+    /// means differ by a bias that no number of frames removes (measured: the estimate stopped
+    /// falling at 9e-4 on CornellBox-Original while the true relMSE fell to 8e-5).
+    static bool inFirstHalf(int frame);
     /// What addRow wrote for row y, given the sums after `frames` frames.
     void varianceRow(int y, int frames, double* variance, lanes::Isa isa = lanes::bestIsa()) const;
     /// The mean of row y after `frames` frames, written to `out` (an image row, image order)
@@ -34,7 +46,30 @@ class RowAccumulator {
     /// it.
     /// `variance[k]`: the variance of row meanWindow(y).first + k (unused without withdrawBlur
     /// or before two frames).
-    void meanRow(int y, int frames, const double* const* variance, glm::vec3* out,
+    ///
+    /// `error` (if not null, an image row of floats): each pixel's estimated relMSE, the
+    /// expected (mean - truth)^2 / (truth^2 + 0.01) averaged over R, G, B, as igi-compare's
+    /// relative_mse measures it against a reference (kRelativeMseEpsilon); 0 before two
+    /// frames. Without a reference, from the frames' own spread: the sums of the first half's
+    /// frames (inFirstHalf: a pseudo-random half, nA of the n) are kept beside those of all n,
+    /// so the mean splits into two independent half-means, A of the first half and B of the
+    /// others (nB = n - nA), with mean = (nA A + nB B) / n. If the frames are
+    /// independent with variance s^2 each, Var(A) = s^2 / nA, Var(B) = s^2 / nB, and
+    /// E[(A - B)^2] = s^2 (1 / nA + 1 / nB) = s^2 n / (nA nB), while Var(mean) = s^2 / n, so
+    ///     Var(mean) = E[(A - B)^2] nA nB / n^2    (1/4 for nA = nB).
+    /// With the progressive filter the mean shown is w F + (1 - w) U (F, U the filtered and
+    /// unfiltered means); A and B are blended with the same w, so that their combination is
+    /// still the mean shown exactly. The relMSE's denominator takes the mean shown for the
+    /// truth. What this cannot see: a bias common to all frames (the blur the filter keeps
+    /// where w = 1, the converged estimator's remaining bias), w's own dependence on the data,
+    /// and a denominator that is noisy itself while the mean is (dark pixels after few
+    /// frames). A bias of the first frame alone (the paper's clamp, which the converging
+    /// estimator keeps in frame 0) is seen: it is in one half only, so (A - B)^2 nA nB / n^2
+    /// holds b^2 / n^2 times (other half's frames) / (its half's frames), about the mean's
+    /// squared bias b^2 / n^2. One pixel's estimate
+    /// rests on one difference (a chi-square of one degree of freedom): average it over
+    /// pixels (a tile, the image) before deciding anything.
+    void meanRow(int y, int frames, const double* const* variance, glm::vec3* out, float* error,
                  lanes::Isa isa = lanes::bestIsa()) const;
     /// The rows [first, second) whose variance the mean of row y reads.
     std::pair<int, int> meanWindow(int y) const;
@@ -50,11 +85,15 @@ class RowAccumulator {
     CellOrder order_;
     int height_ = 0;
     int frames_ = 0;
+    int firstHalf_ = 0;  ///< frames (of frames_) in the first half (inFirstHalf)
     bool withdrawBlur_ = false;
     int noiseX_ = 1;
     int noiseY_ = 1;
     int blocks_ = 0;  ///< blocks of kPixelsPerBlock pixels per row
-    int fields_ = 3;  ///< sums per pixel: filtered RGB; with withdrawBlur unfiltered RGB and d^2
+    /// Sums per pixel: filtered RGB; with withdrawBlur unfiltered RGB and d^2; then those of
+    /// the first half's frames (inFirstHalf), filtered RGB and (with withdrawBlur) unfiltered
+    /// RGB (meanRow's error).
+    int fields_ = 6;
     std::vector<double> sums_;
 };
 
