@@ -113,10 +113,8 @@ TEST(TargetError, ALiveSessionStaysIdleAtItsTargetUntilStopped) {
                              "1", "--output", (dir / "live.png").string()});
     const fs::path log = dir / "master.log";
     const pid_t master = spawnProcess(masterCommand(args), log);
-    const auto control =
-        waitForLine(log, std::regex(R"(control commands on 127\.0\.0\.1:(\d+))"), master);
-    ASSERT_FALSE(control.empty()) << readFile(log);
-    const std::string port = control[1].str();
+    const std::string port = waitForControlPort(log, master);
+    ASSERT_FALSE(port.empty()) << readFile(log);
     const auto idle = waitForLine(
         log, std::regex(R"(after (\d+) frames: rendering ends; the session stays live, idle)"),
         master);
@@ -124,10 +122,7 @@ TEST(TargetError, ALiveSessionStaysIdleAtItsTargetUntilStopped) {
     const int idleAt = std::stoi(idle[1].str());
     ASSERT_TRUE(processRunning(master));
     const auto ctl = [&](const std::vector<std::string>& a) {
-        std::vector<std::string> command = {(binDir() / "igi-ctl").string(), "--connect",
-                                            "127.0.0.1:" + port};
-        command.insert(command.end(), a.begin(), a.end());
-        return runProcess(command, dir / "ctl.log", 60);
+        return runCtl(dir / "ctl.log", port, a);
     };
     const nlohmann::json status = nlohmann::json::parse(ctl({"status"}).output, nullptr, false);
     ASSERT_TRUE(status.value("ok", false)) << status.dump();
