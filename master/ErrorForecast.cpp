@@ -10,6 +10,21 @@ namespace igi {
 void ErrorForecast::add(int accumulated, double relMse) {
     if (accumulated < 2 || !std::isfinite(relMse)) return;
     points_.push_back({accumulated, relMse});
+    // A still view of a live session accumulates for days: keep what the fit can still use
+    // (the later half, as frames only grow within an accumulation), and beyond kMaxPoints every
+    // other of them, which leaves the average over the later half an average of the same curve.
+    const int latest = points_.back().frames;
+    const auto used = std::find_if(points_.begin(), points_.end(),
+                                   [&](const Point& p) { return 2 * p.frames >= latest; });
+    points_.erase(points_.begin(), used);
+    if (points_.size() > kMaxPoints) {
+        std::vector<Point> thinned;
+        thinned.reserve(points_.size() / 2 + 1);
+        // From the newest back, so that the newest point always stays.
+        for (std::size_t i = points_.size(); i-- > 0;)
+            if ((points_.size() - 1 - i) % 2 == 0) thinned.push_back(points_[i]);
+        points_.assign(thinned.rbegin(), thinned.rend());
+    }
 }
 
 std::optional<double> ErrorForecast::coefficient() const {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,6 +32,10 @@ class ErrorForecast {
     /// For the progress and log lines: "est. relMSE 0.0031" and, with a target (> 0),
     /// " (target 0.001, ~12 s)"; empty before an estimate.
     std::string describe(double target, double fps) const;
+
+    /// The points kept: at most kMaxPoints, however long the accumulation.
+    std::size_t pointsKept() const { return points_.size(); }
+    static constexpr std::size_t kMaxPoints = 1024;
 
   private:
     struct Point {

@@ -28,5 +28,17 @@ TEST(ErrorForecast, FitsOneOverFramesToTheLaterHalf) {
     EXPECT_EQ(f.describe(0.001, 4.0), "");
 }
 
+// A live session left on a still view: the forecast keeps a bounded number of points, and its
+// fit is still that of the curve.
+TEST(ErrorForecast, AMillionFramesKeepABoundedNumberOfPoints) {
+    ErrorForecast f;
+    for (int n = 2; n <= 1000000; ++n) f.add(n, 0.05 / n);
+    EXPECT_LE(f.pointsKept(), ErrorForecast::kMaxPoints);
+    ASSERT_TRUE(f.coefficient());
+    EXPECT_NEAR(*f.coefficient(), 0.05, 1e-9);
+    EXPECT_NEAR(*f.framesTo(1e-8), 5e6, 1e-3);
+    EXPECT_EQ(f.describe(0, 1.0), "est. relMSE 5e-08");
+}
+
 }  // namespace
 }  // namespace igi

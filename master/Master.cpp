@@ -332,29 +332,8 @@ void Master::noteShown(std::uint32_t f) {
     fs.epoch = frames_.at(f)->epoch;
     fs.accumulated = std::uint32_t(compositor_->accumulatedFrames());
     fs.shown = true;
-    if (fs.accumulated <= 1) forecast_.reset();  // a new accumulation
-    shownError_ = {};
-    shownError_.accumulated = int(fs.accumulated);
-    if (fs.accumulated >= 2) {
-        fs.estimatedRelMse = compositor_->estimatedRelMse();
-        shownError_.image = *fs.estimatedRelMse;
-        // Per tile region (the cells of one region share its pixels): the worst, and how many
-        // are still above the target.
-        for (const Tile& t : scheduler_->layout()) {
-            if (t.kx != 0 || t.ky != 0) continue;
-            const double e = compositor_->estimatedRelMse(t);
-            shownError_.worstTile = std::max(shownError_.worstTile, e);
-            shownError_.tilesAbove += options_.targetError > 0 && e > options_.targetError;
-            ++shownError_.regions;
-        }
-        forecast_.add(int(fs.accumulated), shownError_.image);
-        if (options_.targetError > 0) {
-            if (const auto frames = forecast_.framesTo(options_.targetError))
-                fs.framesToTarget = *frames;
-            if (const auto s = forecast_.secondsTo(options_.targetError, stats_.recentFps()))
-                fs.secondsToTarget = *s;
-        }
-    }
+    shownError_.shown(int(fs.accumulated), *compositor_, scheduler_->layout(), stats_.recentFps(),
+                      fs);
 }
 
 void Master::onComposited(std::uint32_t f, double seconds) {
@@ -375,7 +354,7 @@ void Master::onComposited(std::uint32_t f, double seconds) {
                     : "");
     if (progress_)
         progress_->update(int(f + 1), stats_.recentFps(), roster_->readyCount(),
-                          forecast_.describe(options_.targetError, stats_.recentFps()));
+                          shownError_.describe(stats_.recentFps()));
     outputs_->writeFrameImages(f);
     publishToView(f);
     stats_.closeFrame(f);
@@ -466,12 +445,7 @@ double Master::renderSeconds() const {
 
 std::string Master::limitReached() const {
     if (!started_ || renderingEnded_) return {};
-    const int accumulated = shownError_.accumulated;
-    // Called as each frame is shown (and by the tick): the first frame whose estimate is at
-    // or below the target ends the rendering, with its image.
-    if (options_.targetError > 0 && accumulated >= 2 && shownError_.image <= options_.targetError)
-        return fmt::format("estimated relMSE {:.3g} <= --target-error {:.3g} after {} frames",
-                           shownError_.image, options_.targetError, accumulated);
+    if (std::string why = shownError_.targetMet(); !why.empty()) return why;
     if (options_.timeLimitSeconds > 0 && renderSeconds() >= options_.timeLimitSeconds)
         return fmt::format("--time-limit {:g} s reached after {} frames", options_.timeLimitSeconds,
                            nextFrameToFinish_);
@@ -491,30 +465,15 @@ void Master::endRendering(const std::string& why) {
 }
 
 nlohmann::json Master::errorJson() const {
-    const auto orNull = [](const std::optional<double>& v) {
-        return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-    };
     // From the image shown last (noteShown): the compositor may be adding the next frame now,
     // on the pool.
-    nlohmann::json j = {
-        {"estimated_rel_mse",
-         shownError_.accumulated >= 2 ? nlohmann::json(shownError_.image) : nlohmann::json()},
-        {"target_error",
-         options_.targetError > 0 ? nlohmann::json(options_.targetError) : nlohmann::json()},
-        {"time_limit_s", options_.timeLimitSeconds > 0 ? nlohmann::json(options_.timeLimitSeconds)
-                                                       : nlohmann::json()},
-        {"render_seconds", renderSeconds()},
-        {"rendering", renderingEnded_ ? "idle" : (started_ ? "running" : "waiting")}};
-    if (shownError_.accumulated >= 2) {
-        j["worst_tile_rel_mse"] = shownError_.worstTile;
-        if (options_.targetError > 0)
-            j["tiles_above_target"] = {shownError_.tilesAbove, shownError_.regions};
-    }
-    if (options_.targetError > 0) {
-        j["predicted_frames_to_target"] = orNull(forecast_.framesTo(options_.targetError));
-        j["predicted_seconds_to_target"] =
-            orNull(forecast_.secondsTo(options_.targetError, stats_.recentFps()));
-    }
+    nlohmann::json j = shownError_.json(stats_.recentFps());
+    j["target_error"] =
+        options_.targetError > 0 ? nlohmann::json(options_.targetError) : nlohmann::json();
+    j["time_limit_s"] = options_.timeLimitSeconds > 0 ? nlohmann::json(options_.timeLimitSeconds)
+                                                      : nlohmann::json();
+    j["render_seconds"] = renderSeconds();
+    j["rendering"] = renderingEnded_ ? "idle" : (started_ ? "running" : "waiting");
     return j;
 }
 

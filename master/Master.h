@@ -15,7 +15,6 @@
 #include "ClientRoster.h"
 #include "CodedFrame.h"
 #include "ControlServer.h"
-#include "ErrorForecast.h"
 #include "FrameCompositor.h"
 #include "FrameLogPace.h"
 #include "FrameOutputs.h"
@@ -25,6 +24,7 @@
 #include "ProgressLine.h"
 #include "SceneTimeline.h"
 #include "SessionControl.h"
+#include "ShownError.h"
 #include "Statistics.h"
 #include "TileScheduler.h"
 #include "scene/Scene.h"
@@ -149,17 +149,7 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     bool ending_ = false;
     /// A live session reached its target error or time limit: no more frames are opened.
     bool renderingEnded_ = false;
-    ErrorForecast forecast_;  ///< of the current accumulation
-    /// The error estimate of the image shown last, kept when it was shown: the compositor's
-    /// own figures change while it adds the next frame on the pool.
-    struct ShownError {
-        int accumulated = 0;
-        double image = 0;
-        double worstTile = 0;  ///< the largest over the tile regions
-        int tilesAbove = 0;    ///< regions above --target-error
-        int regions = 0;
-    };
-    ShownError shownError_;
+    ShownError shownError_{options_.targetError};  ///< of the image shown last
     int exitCode_ = 0;
     std::chrono::steady_clock::time_point created_;
     std::chrono::steady_clock::time_point renderStart_;
