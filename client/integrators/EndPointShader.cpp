@@ -226,7 +226,7 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
     thread_local std::vector<VplChoice::Pick> picks;
     picks.resize(set.vplChoice.perPoint);
     const std::uint32_t chosen =
-        set.vplChoice.choose(origin, n, x.faceNormal, set.minDistance2, picks.data());
+        set.vplChoice.choose(origin, n, x.faceNormal, set.minDistance2, picks.data(), &b);
     for (std::uint32_t k = 0; k < chosen; ++k)
         connectVpl(x, set, picks[k].index, picks[k].scale, origin, residual, queue);
     return false;
