@@ -282,7 +282,7 @@ void EndPointShader::connectLambertian(const ShadingPoint& x, const LightingSet&
     for (std::size_t k = 0; k < links.size(); ++k) {
         const LambertianLink link = links[k];
         const Vpl& vpl = set.indirect[link.vpl];
-        if (vpl.glossy()) {  // the general connection, as the scalar path takes it
+        if (vpl.glossy() || vpl.bends) {  // the general connection, as the scalar path takes it
             connectVpl(x, set, link.vpl, 1.0f, origin, nullptr, queue);
             continue;
         }

@@ -26,9 +26,12 @@ void VplChoice::prepare(const std::vector<Vpl>& vpls, std::uint32_t points, floa
     for (std::size_t i = 0; i < vpls.size(); ++i) {
         const Vpl& v = vpls[i];
         px[i] = v.position.x, py[i] = v.position.y, pz[i] = v.position.z;
-        nx[i] = v.normal.x, ny[i] = v.normal.y, nz[i] = v.normal.z;
+        // A VPL on a mapped surface bends its normal toward each receiver (Vpl::bends): its
+        // lane holds the geometric normal, on whose side it can light a point at all.
+        const glm::vec3 normal = v.bends ? v.face : v.normal;
+        nx[i] = normal.x, ny[i] = normal.y, nz[i] = normal.z;
         lum[i] = std::max(0.0f, luminance(v.power) + luminance(v.glossyPower));
-        if (v.glossy() || v.omni) {
+        if (v.glossy() || v.omni || v.bends) {
             general[i / 4] |= std::uint8_t(1u << (i % 4));
             anyGeneral = true;
         }

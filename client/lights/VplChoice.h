@@ -41,8 +41,9 @@ struct VplChoice {
     /// the connections of a Lambertian point read (LambertianLinks).
     std::vector<float> px, py, pz, nx, ny, nz, lum;
     /// Per four VPLs: bit i where VPL 4k + i needs the general connection rather than the
-    /// Lambertian one (LambertianLinks): a glossy VPL, or an omni light sample (a point light,
-    /// whose cosine is 1, when a set's light samples are laid out).
+    /// Lambertian one (LambertianLinks): a glossy VPL, a VPL on a normal- or bump-mapped
+    /// surface (its normal bends toward each receiver, Vpl::bends), or an omni light sample (a
+    /// point light, whose cosine is 1, when a set's light samples are laid out).
     std::vector<std::uint8_t> general;
     bool anyGeneral = false;
     /// Per four VPLs: bit i where VPL 4k + i has a GGX lobe; those VPLs themselves, in `ggxVpls`,
