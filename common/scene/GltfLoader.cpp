@@ -320,7 +320,12 @@ void checkGltfFeatures(const std::string& path, const tinygltf::Model& model) {
     std::vector<std::string> otherTexCoord, partialTransmission, roughTransmission;
     for (std::size_t i = 0; i < model.materials.size(); ++i) {
         const tinygltf::Material& m = model.materials[i];
-        const std::string name = "'" + (m.name.empty() ? "#" + std::to_string(i) : m.name) + "'";
+        // Named as GltfMaterials::convert names it (and as scene files address it).
+        const std::string name = "'" +
+                                 (m.name.empty() ? std::filesystem::path(path).stem().string() +
+                                                       "#material" + std::to_string(i)
+                                                 : m.name) +
+                                 "'";
         if (m.occlusionTexture.index >= 0)
             ignored.insert(
                 "occlusionTexture (ambient occlusion is for rasterizers: a path tracer "

@@ -197,7 +197,8 @@ TEST(GltfFeatures, PartialTransmissionAndOtherTexCoordsNameTheirMaterials) {
                    {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"texCoord", 1}}}}}}}},
                  {{"name", "first"},
                   {"pbrMetallicRoughness",
-                   {{"baseColorTexture", {{"index", 0}, {"texCoord", 0}}}}}}});
+                   {{"baseColorTexture", {{"index", 0}, {"texCoord", 0}}}}}},
+                 {{"extensions", transmission(0.4)}}});
             g["textures"] = nlohmann::json::array({{{"source", 0}}});
             g["images"] = nlohmann::json::array({{{"uri", "t.pgm"}}});
         },
@@ -206,8 +207,12 @@ TEST(GltfFeatures, PartialTransmissionAndOtherTexCoordsNameTheirMaterials) {
     EXPECT_NE(text.find("plain.gltf: material features not modelled"), std::string::npos) << text;
     EXPECT_NE(text.find("partial KHR_materials_transmission, all or nothing instead ('frosted' "
                         "(factor 0.3: rendered opaque); 'tinted' (factor 0.8, "
-                        "transmissionTexture not read: rendered as clear glass))"),
+                        "transmissionTexture not read: rendered as clear glass); "
+                        "'plain#material6' (factor 0.4: rendered opaque))"),
               std::string::npos)
+        << text;
+    // A material without a name is named as the loader names it.
+    EXPECT_NE(text.find("'plain#material6' (factor 0.4: rendered opaque)"), std::string::npos)
         << text;
     EXPECT_NE(text.find("texCoord other than 0, TEXCOORD_0 read instead ('second' "
                         "baseColorTexture (texCoord 1); 'second' normalTexture (texCoord 1))"),
