@@ -226,7 +226,7 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
     thread_local std::vector<VplChoice::Pick> picks;
     picks.resize(set.vplChoice.perPoint);
     const std::uint32_t chosen =
-        set.vplChoice.choose(origin, n, x.faceNormal, set.minDistance2, picks.data());
+        set.vplChoice.choose(origin, n, x.faceNormal, set.minDistance2, picks.data(), &b);
     for (std::uint32_t k = 0; k < chosen; ++k)
         connectVpl(x, set, picks[k].index, picks[k].scale, origin, residual, queue);
     return false;
@@ -282,7 +282,7 @@ void EndPointShader::connectLambertian(const ShadingPoint& x, const LightingSet&
     for (std::size_t k = 0; k < links.size(); ++k) {
         const LambertianLink link = links[k];
         const Vpl& vpl = set.indirect[link.vpl];
-        if (vpl.glossy()) {  // the general connection, as the scalar path takes it
+        if (vpl.glossy() || vpl.bends) {  // the general connection, as the scalar path takes it
             connectVpl(x, set, link.vpl, 1.0f, origin, nullptr, queue);
             continue;
         }

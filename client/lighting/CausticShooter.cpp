@@ -212,7 +212,7 @@ void CausticShooter::shootFromVpls(std::uint32_t frame, std::uint32_t setIndex,
                                    {sampler.emission(j, 3), sampler.emission(j, 4)}, direction,
                                    pdfDirection))
             continue;
-        const float cosY = glm::dot(direction, v.normal);
+        const float cosY = glm::dot(direction, v.normalToward(-direction));
         if (cosY <= 0) continue;
         glm::vec3 intensity = v.power;
         if (v.glossy()) intensity += glossyIntensity(v, direction);

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "lights/VplOnSurface.h"
 #include "math/Color.h"
 #include "math/Frame.h"
 #include "math/Warp.h"
@@ -42,24 +43,8 @@ std::uint32_t pathsFor(int wantedVpls, float rho, int maxLength) {
 // BRDF, seen from the direction the light came from.
 Vpl vplAt(const TraceableScene& scene, const SurfacePoint& hit, const Lobes& lobes,
           glm::vec3 flux) {
-    const SurfaceBrdf& b = lobes.brdf;
-    Vpl v;
+    Vpl v = vplOnSurface(hit, lobes, flux);
     v.position = scene.offsetOrigin(hit.position, lobes.faceNormal);
-    v.normal = lobes.normal;
-    v.power = flux * b.kd * kInvPi;
-    v.diffuseShare = b.diffuseShare;
-    v.glossyShare = b.glossyShare;
-    if (b.hasGlossy() && b.model == GlossyModel::Ggx) {
-        v.ggx = true;
-        v.glossyPower = flux;
-        v.exponent = b.exponent;  // alpha
-        v.f0 = b.ks;
-        v.mirror = lobes.mirrorDirection;  // lobes.wo, where the light came from, mirrored
-    } else if (b.hasGlossy()) {
-        v.glossyPower = flux * b.ks * ((b.exponent + 2.0f) * 0.5f * kInvPi);
-        v.exponent = b.exponent;
-        v.mirror = lobes.mirrorDirection;  // lobes.wo is where the light came from
-    }
     return v;
 }
 

@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 
 #include "materials/Ggx.h"
+#include "materials/NormalMap.h"
 #include "scene/Light.h"
 
 namespace igi {
@@ -43,18 +44,38 @@ struct Vpl {
     float diffuseShare = 1;
     float glossyShare = 0;
 
+    /// On a normal- or bump-mapped surface: the shading normal as the map gives it (before the
+    /// bend of NormalMap.h's ensureValidReflection) and the geometric normal, both on the lit
+    /// side. `normal` is then the map's normal bent for the direction the light came from,
+    /// which only the light path's next bounce uses: toward a receiver the VPL bends `mapped`
+    /// for the direction toward that receiver (normalToward), as the eye path and the path
+    /// tracer bend a surface's normal for the direction toward the camera. So the bend depends
+    /// on the same direction at both ends of a connection, and a VPL sends what the path
+    /// tracer's light sample at that vertex evaluates (docs/MATERIALS.md).
+    bool bends = false;
+    glm::vec3 mapped{0.0f};
+    glm::vec3 face{0.0f};
+
     /// Light samples on area lights: the area density with which the point was chosen, for
     /// multiple importance sampling against BRDF sampling (0 for point lights).
     float areaPdf = 0;
 
     bool glossy() const { return glossyShare > 0; }
+    /// The shading normal toward a receiver in the unit direction -w (w: from the receiver to
+    /// the VPL): `normal`, or on a mapped surface `mapped` bent for -w; zero where -w is below
+    /// the geometric surface (no connection leaves a surface below it).
+    glm::vec3 normalToward(glm::vec3 w) const {
+        if (!bends) return normal;
+        if (!(-glm::dot(face, w) > 0)) return glm::vec3(0.0f);
+        return normalmap::ensureValidReflection(face, -w, mapped);
+    }
     /// The cosine factor at the VPL toward a receiver in the unit direction -w: cos(theta) from
     /// its normal, 1 for a point light, the ramp for a spot.
     float emittingCosine(glm::vec3 w) const {
-        if (!omni) return -glm::dot(normal, w);
+        if (!omni) return -glm::dot(normalToward(w), w);
         return spot ? spotRamp(spotCosOuter, spotScale, -glm::dot(normal, w)) : 1.0f;
     }
-    /// GGX: the direction the light came from (mirror's image about the normal).
+    /// The direction the light came from (mirror's image about the normal).
     glm::vec3 incoming() const { return 2.0f * glm::dot(normal, mirror) * normal - mirror; }
     bool operator==(const Vpl&) const = default;
 
@@ -67,12 +88,17 @@ struct Vpl {
     };
     Emission towards(glm::vec3 w) const {
         Emission e{power, diffuseShare};
-        if (glossy() && ggx) {
+        if (!glossy()) return e;
+        const glm::vec3 n = normalToward(w);
+        if (ggx) {
             const glm::vec3 in = incoming();
-            e.intensity += glossyPower * ggx::evaluate(exponent, f0, normal, in, -w);
-            e.sharpness += glossyShare * ggx::sharpness(exponent, normal, in, -w);
-        } else if (glossy()) {
-            const float c = -glm::dot(w, mirror);
+            e.intensity += glossyPower * ggx::evaluate(exponent, f0, n, in, -w);
+            e.sharpness += glossyShare * ggx::sharpness(exponent, n, in, -w);
+        } else {
+            // Phong about the mirror direction of where the light came from (on a mapped
+            // surface, mirrored about the normal bent toward the receiver).
+            const glm::vec3 m = bends ? 2.0f * glm::dot(n, incoming()) * n - incoming() : mirror;
+            const float c = -glm::dot(w, m);
             const float lobe = c > 0 ? std::pow(std::min(c, 1.0f), exponent) : 0.0f;
             e.intensity += glossyPower * lobe;
             e.sharpness += glossyShare * 0.5f * (exponent + 2.0f) * lobe;
@@ -84,8 +110,10 @@ struct Vpl {
 /// The glossy lobe's intensity (its cosine left out) in the unit direction `out` leaving v.
 inline glm::vec3 glossyIntensity(const Vpl& v, glm::vec3 out) {
     if (!v.glossy()) return glm::vec3(0.0f);
-    if (v.ggx) return v.glossyPower * ggx::evaluate(v.exponent, v.f0, v.normal, v.incoming(), out);
-    const float c = glm::dot(out, v.mirror);
+    const glm::vec3 n = v.normalToward(-out);
+    if (v.ggx) return v.glossyPower * ggx::evaluate(v.exponent, v.f0, n, v.incoming(), out);
+    const glm::vec3 m = v.bends ? 2.0f * glm::dot(n, v.incoming()) * n - v.incoming() : v.mirror;
+    const float c = glm::dot(out, m);
     return c > 0 ? v.glossyPower * std::pow(std::min(c, 1.0f), v.exponent) : glm::vec3(0.0f);
 }
 

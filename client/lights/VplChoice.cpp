@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include "math/Color.h"
 #include "math/Float4.h"
 
@@ -18,20 +20,35 @@ void VplChoice::prepare(const std::vector<Vpl>& vpls, std::uint32_t points, floa
     lum.assign(padded, 0.0f);
     general.assign(wide / 4, 0);
     anyGeneral = false;
+    ggxBits.assign(padded / 4, 0);
+    ggxSlot.assign(padded, 0);
+    ggxVpls.clear();
     for (std::size_t i = 0; i < vpls.size(); ++i) {
         const Vpl& v = vpls[i];
         px[i] = v.position.x, py[i] = v.position.y, pz[i] = v.position.z;
-        nx[i] = v.normal.x, ny[i] = v.normal.y, nz[i] = v.normal.z;
+        // A VPL on a mapped surface bends its normal toward each receiver (Vpl::bends): its
+        // lane holds the geometric normal, on whose side it can light a point at all.
+        const glm::vec3 normal = v.bends ? v.face : v.normal;
+        nx[i] = normal.x, ny[i] = normal.y, nz[i] = normal.z;
         lum[i] = std::max(0.0f, luminance(v.power) + luminance(v.glossyPower));
-        if (v.glossy() || v.omni) {
+        if (v.glossy() || v.omni || v.bends) {
             general[i / 4] |= std::uint8_t(1u << (i % 4));
             anyGeneral = true;
+        }
+        if (v.glossy() && v.ggx) {
+            ggxBits[i / 4] |= std::uint8_t(1u << (i % 4));
+            ggxSlot[i] = std::uint32_t(ggxVpls.size());
+            ggxVpls.push_back(v);
         }
     }
 }
 
-std::uint32_t VplChoice::choose(glm::vec3 origin, glm::vec3 n, glm::vec3 f, float dmin2,
-                                Pick* out) const {
+std::uint32_t VplChoice::choose(glm::vec3 origin, glm::vec3 n, glm::vec3 f, float dmin2, Pick* out,
+                                const SurfaceBrdf* receiver) const {
+    // A GGX receiver weighs every VPL by its lobe; Lambertian and Phong receivers keep the
+    // Lambertian importance (and its bits: scenes without GGX choose exactly as before).
+    const bool ggxReceiver =
+        receiver != nullptr && receiver->model == GlossyModel::Ggx && receiver->hasGlossy();
     const std::size_t padded = lum.size();
     // Per VPL: its importance w_i, and the running sums of the w and of the reachable VPLs
     // up to it (so that the CDF needs no second walk in sequence).
@@ -51,7 +68,27 @@ std::uint32_t VplChoice::choose(glm::vec3 origin, glm::vec3 n, glm::vec3 f, floa
         const Float4 w = Float4::load(&lum[i]) * cx * cy / (d2 * max(d2, m2));
         const Float4 can =
             greater(cx, zero) & greater(cf, zero) & greater(cy, zero) & greater(w, zero);
-        const Float4 kept = select(can, w, zero);
+        Float4 kept = select(can, w, zero);
+        const unsigned reach = laneBits(can);
+        const unsigned lobes = ggxBits[i / 4];
+        if (reach && (ggxReceiver || (reach & lobes))) {
+            // The lanes a GGX lobe ranks, one at a time: w times what the lobes send toward
+            // the point relative to the Lambertian proxy lum(power + glossyPower).
+            float k4[4], x4[4], y4[4], z4[4];
+            kept.store(k4), tx.store(x4), ty.store(y4), tz.store(z4);
+            for (unsigned bits = reach; bits; bits &= bits - 1) {
+                const int k = __builtin_ctz(bits);
+                const glm::vec3 t(x4[k], y4[k], z4[k]);
+                const glm::vec3 dir = t / std::sqrt(glm::dot(t, t));  // toward the VPL
+                float ratio = 1.0f;
+                if (lobes & (1u << k))
+                    ratio = luminance(ggxVpls[ggxSlot[i + k]].towards(dir).intensity) / lum[i + k];
+                if (ggxReceiver) ratio *= receiver->sharpness(dir);
+                const float ranked = k4[k] * ratio;
+                k4[k] = std::isfinite(ranked) ? std::max(ranked, 1e-6f * k4[k]) : k4[k];
+            }
+            kept = Float4::load(k4);
+        }
         kept.store(&weight[i]);
         carryW = prefixSum(kept) + carryW;
         carryR = prefixSum(select(can, one, zero)) + carryR;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "math/Color.h"
 #include "scene/SceneLoader.h"
 #include "testing/TestScenes.h"
 #include "util/TestPaths.h"
@@ -134,6 +135,91 @@ TEST(VplChoice, APointNoVplCanLightChoosesNone) {
     choice.prepare(vpls, 8, 0.5f);
     std::vector<VplChoice::Pick> picks(8);
     EXPECT_EQ(choice.choose({0, 0, 0}, {0, 1, 0}, {0, 1, 0}, 0.01f, picks.data()), 0u);
+}
+
+// GGX lobes at either end: a glossy metal point among VPLs on glossy metal, most of whose
+// lobes send their light elsewhere. What each VPL gives the point is its lobe toward the point
+// (Vpl::towards) through the point's lobe; the choice ranks by both, so a few choices per point
+// estimate the sum with a fraction of the spread that the Lambertian proxy leaves (which ranks
+// a GGX VPL by the flux it received, whatever its lobe sends the point's way).
+float ggxContribution(const Vpl& v, const SurfaceBrdf& b, glm::vec3 x, float dmin2) {
+    const glm::vec3 t = v.position - x;
+    const float d2 = glm::dot(t, t), d = std::sqrt(d2);
+    const glm::vec3 w = t / d;
+    const float cx = glm::dot(b.normal, w), cy = -glm::dot(v.normal, w);
+    if (cx <= 0 || cy <= 0) return 0;
+    const glm::vec3 f = b.diffuse() + b.glossy(w);
+    return luminance(v.towards(w).intensity * f) * cx * cy / std::max(d2, dmin2);
+}
+
+struct Spread {
+    double mean, relativeDeviation;
+};
+// The estimate's mean and relative standard deviation over a frame's worth of offsets, with
+// the VPLs ranked as `ranked` says and contributing as `vpls` do.
+Spread spreadOf(const std::vector<Vpl>& ranked, const std::vector<Vpl>& vpls, const SurfaceBrdf& b,
+                glm::vec3 x, float dmin2, std::uint32_t perPoint, const SurfaceBrdf* receiver) {
+    const int offsets = 4096;
+    double sum = 0, sum2 = 0;
+    std::vector<VplChoice::Pick> picks(perPoint);
+    VplChoice choice;
+    for (int k = 0; k < offsets; ++k) {
+        choice.prepare(ranked, perPoint, (float(k) + 0.5f) / float(offsets));
+        const std::uint32_t chosen =
+            choice.choose(x, b.normal, b.normal, dmin2, picks.data(), receiver);
+        double e = 0;
+        for (std::uint32_t i = 0; i < chosen; ++i)
+            e += picks[i].scale * ggxContribution(vpls[picks[i].index], b, x, dmin2);
+        sum += e, sum2 += e * e;
+    }
+    const double mean = sum / offsets;
+    return {mean, std::sqrt(std::max(0.0, sum2 / offsets - mean * mean)) / mean};
+}
+
+TEST(VplChoice, GgxLobesAtEitherEndRankTheVplsByWhatTheySendThePoint) {
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<Vpl> vpls = scatteredVpls(144, random);
+    for (std::size_t i = 0; i < vpls.size(); ++i) {
+        Vpl& v = vpls[i];
+        if (i % 3 == 0) continue;  // a third stay Lambertian
+        // Glossy metal (alpha 0.1, no diffuse lobe), lit from a random direction above it.
+        const glm::vec3 in = glm::normalize(
+            v.normal + glm::vec3(u(random) - 0.5f, u(random) - 0.5f, u(random) - 0.5f));
+        if (glm::dot(in, v.normal) <= 0.05f) continue;
+        v.ggx = true;
+        v.exponent = 0.1f;
+        v.f0 = glm::vec3(0.9f);
+        v.glossyPower = v.power * 4.0f;  // the flux it received
+        v.power = glm::vec3(0.0f);
+        v.mirror = 2.0f * glm::dot(v.normal, in) * v.normal - in;
+        v.diffuseShare = 0.0f;
+        v.glossyShare = 1.0f;
+    }
+    const glm::vec3 x(0.5f, 0.0f, 0.2f), n(0, 1, 0);
+    const glm::vec3 view = glm::normalize(glm::vec3(0.3f, 1.0f, 0.5f));
+    const SurfaceBrdf b = SurfaceBrdf::makeGgx(glm::vec3(0.05f), glm::vec3(0.8f), 0.15f, n,
+                                               2.0f * glm::dot(n, view) * n - view);
+    const float dmin2 = 0.2f * 0.2f;
+    double exact = 0;
+    for (const Vpl& v : vpls) exact += ggxContribution(v, b, x, dmin2);
+    ASSERT_GT(exact, 0);
+    // The Lambertian proxy: the same VPLs without their lobe's rank (ggx cleared, so the
+    // choice sees lum(power + glossyPower) as it did), and no receiver.
+    std::vector<Vpl> proxy = vpls;
+    for (Vpl& v : proxy) v.ggx = false;
+    for (std::uint32_t perPoint : {4u, 18u}) {
+        const Spread ranked = spreadOf(vpls, vpls, b, x, dmin2, perPoint, &b);
+        const Spread lambertian = spreadOf(proxy, vpls, b, x, dmin2, perPoint, nullptr);
+        std::printf(
+            "%u per point: relative deviation %.3f ranked by the lobes, %.3f by the "
+            "Lambertian proxy\n",
+            perPoint, ranked.relativeDeviation, lambertian.relativeDeviation);
+        // Unbiased either way; the lobes' rank spreads less than a third as much.
+        EXPECT_NEAR(ranked.mean / exact, 1.0, 2e-3) << perPoint;
+        EXPECT_NEAR(lambertian.mean / exact, 1.0, 2e-3) << perPoint;
+        EXPECT_LT(3.0 * ranked.relativeDeviation, lambertian.relativeDeviation) << perPoint;
+    }
 }
 
 // Rendered: the interior (96 small lights, every point choosing 18 of a pool of 144 VPLs per set)

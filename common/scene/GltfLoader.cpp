@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -315,20 +316,76 @@ void checkGltfFeatures(const std::string& path, const tinygltf::Model& model) {
     if (!used.empty())
         spdlog::warn("{}: extensions not modelled, rendered without them: {}", path, joined(used));
     std::set<std::string> ignored;
-    for (const tinygltf::Material& m : model.materials) {
+    // Which material and slot each of these concerns, so that the warning can be acted on.
+    std::vector<std::string> otherTexCoord, partialTransmission, roughTransmission;
+    for (std::size_t i = 0; i < model.materials.size(); ++i) {
+        const tinygltf::Material& m = model.materials[i];
+        // Named as GltfMaterials::convert names it (and as scene files address it).
+        const std::string name = "'" +
+                                 (m.name.empty() ? std::filesystem::path(path).stem().string() +
+                                                       "#material" + std::to_string(i)
+                                                 : m.name) +
+                                 "'";
         if (m.occlusionTexture.index >= 0)
             ignored.insert(
                 "occlusionTexture (ambient occlusion is for rasterizers: a path tracer "
                 "computes it)");
         const auto& pbr = m.pbrMetallicRoughness;
         // KHR_texture_transform is read for every slot; a texCoord other than 0, the
-        // extension's or the slot's, is not.
-        for (const tinygltf::TextureInfo* t :
-             {&pbr.baseColorTexture, &pbr.metallicRoughnessTexture, &m.emissiveTexture})
-            if (t->index >= 0 && texCoordOf(*t) != 0) ignored.insert("texCoord other than 0");
+        // extension's or the slot's, is not: the lookup takes TEXCOORD_0 (igi's meshes carry
+        // one set of uvs).
+        const std::pair<const char*, const tinygltf::TextureInfo*> slots[] = {
+            {"baseColorTexture", &pbr.baseColorTexture},
+            {"metallicRoughnessTexture", &pbr.metallicRoughnessTexture},
+            {"emissiveTexture", &m.emissiveTexture}};
+        for (const auto& [slot, t] : slots)
+            if (t->index >= 0 && texCoordOf(*t) != 0)
+                otherTexCoord.push_back(name + " " + slot + " (texCoord " +
+                                        std::to_string(texCoordOf(*t)) + ")");
         if (m.normalTexture.index >= 0 && texCoordOf(m.normalTexture) != 0)
-            ignored.insert("texCoord other than 0");
+            otherTexCoord.push_back(name + " normalTexture (texCoord " +
+                                    std::to_string(texCoordOf(m.normalTexture)) + ")");
+        // KHR_materials_transmission is all or nothing: above one half smooth glass, else
+        // opaque metallic-roughness (GltfMaterials::convert). A factor strictly between 0 and
+        // 1, or a transmissionTexture, is a material partly transmitting, which is not modelled.
+        const double transmission =
+            extensionNumber(m.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0);
+        const auto ext = m.extensions.find("KHR_materials_transmission");
+        const bool textured = ext != m.extensions.end() && ext->second.Has("transmissionTexture");
+        if ((transmission > 0.0 && transmission < 1.0) || textured) {
+            char factor[32];
+            std::snprintf(factor, sizeof factor, "%g", transmission);
+            partialTransmission.push_back(
+                name + " (factor " + factor + (textured ? ", transmissionTexture not read" : "") +
+                ": rendered " + (transmission > 0.5 ? "as clear glass" : "opaque") + ")");
+        }
+        // Glass is smooth (a delta refraction): a transmitting material's roughness, whose
+        // lobe would blur what is seen through it (a GGX BTDF), is not modelled.
+        // (A metallicRoughnessTexture's green only scales the factor down.)
+        if (transmission > 0.5 && std::sqrt(kMinGgxAlpha) <= pbr.roughnessFactor) {
+            char value[32];
+            std::snprintf(value, sizeof value, "%g", pbr.roughnessFactor);
+            roughTransmission.push_back(name + " (roughnessFactor " + value +
+                                        (pbr.metallicRoughnessTexture.index >= 0
+                                             ? ", with a metallicRoughnessTexture"
+                                             : "") +
+                                        ")");
+        }
     }
+    auto listed = [](const std::vector<std::string>& items) {
+        std::string out;
+        for (const std::string& item : items) out += (out.empty() ? "" : "; ") + item;
+        return out;
+    };
+    if (!otherTexCoord.empty())
+        ignored.insert("texCoord other than 0, TEXCOORD_0 read instead (" + listed(otherTexCoord) +
+                       ")");
+    if (!partialTransmission.empty())
+        ignored.insert("partial KHR_materials_transmission, all or nothing instead (" +
+                       listed(partialTransmission) + ")");
+    if (!roughTransmission.empty())
+        ignored.insert("rough transmission, smooth glass instead (" + listed(roughTransmission) +
+                       ")");
     if (!ignored.empty())
         spdlog::warn("{}: material features not modelled, rendered without them: {}", path,
                      joined(ignored));

@@ -167,6 +167,67 @@ TEST(GltfFeatures, UnsupportedRequiredExtensionIsAnErrorAndUnmodelledOnesAreName
     EXPECT_EQ(text.find("occlusionTexture"), text.rfind("occlusionTexture")) << text;
 }
 
+// Partial transmission (a factor strictly between 0 and 1, or a transmissionTexture), rough
+// transmission and a texCoord other than 0 are not modelled: the warning names each material and
+// slot, and what was rendered instead; a transmission of exactly 0 or 1 and texCoord 0 are not
+// named.
+TEST(GltfFeatures, PartialTransmissionAndOtherTexCoordsNameTheirMaterials) {
+    test::CapturedLog log;
+    const std::string pgm = std::string("P5\n2 1\n255\n") + char(0) + char(255);
+    plainGltfWith(
+        [](nlohmann::json& g) {
+            g["extensionsUsed"] = {"KHR_materials_transmission", "KHR_texture_transform"};
+            auto transmission = [](double factor) {
+                return nlohmann::json{
+                    {"KHR_materials_transmission", {{"transmissionFactor", factor}}}};
+            };
+            g["materials"] = nlohmann::json::array(
+                {{{"name", "frosted"}, {"extensions", transmission(0.3)}},
+                 {{"name", "tinted"},
+                  {"extensions",
+                   {{"KHR_materials_transmission",
+                     {{"transmissionFactor", 0.8}, {"transmissionTexture", {{"index", 0}}}}}}}},
+                 {{"name", "clear"},
+                  {"pbrMetallicRoughness", {{"roughnessFactor", 0.0}}},
+                  {"extensions", transmission(1.0)}},
+                 {{"name", "solid"}, {"extensions", transmission(0.0)}},
+                 {{"name", "second"},
+                  {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"texCoord", 1}}}}},
+                  {"normalTexture",
+                   {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"texCoord", 1}}}}}}}},
+                 {{"name", "first"},
+                  {"pbrMetallicRoughness",
+                   {{"baseColorTexture", {{"index", 0}, {"texCoord", 0}}}}}},
+                 {{"extensions", transmission(0.4)}}});
+            g["textures"] = nlohmann::json::array({{{"source", 0}}});
+            g["images"] = nlohmann::json::array({{{"uri", "t.pgm"}}});
+        },
+        {{"t.pgm", pgm}});
+    const std::string text = log.text();
+    EXPECT_NE(text.find("plain.gltf: material features not modelled"), std::string::npos) << text;
+    EXPECT_NE(text.find("partial KHR_materials_transmission, all or nothing instead ('frosted' "
+                        "(factor 0.3: rendered opaque); 'tinted' (factor 0.8, "
+                        "transmissionTexture not read: rendered as clear glass); "
+                        "'plain#material6' (factor 0.4: rendered opaque))"),
+              std::string::npos)
+        << text;
+    // A material without a name is named as the loader names it.
+    EXPECT_NE(text.find("'plain#material6' (factor 0.4: rendered opaque)"), std::string::npos)
+        << text;
+    EXPECT_NE(text.find("texCoord other than 0, TEXCOORD_0 read instead ('second' "
+                        "baseColorTexture (texCoord 1); 'second' normalTexture (texCoord 1))"),
+              std::string::npos)
+        << text;
+    // Glass is smooth: a transmitting material's roughness (the specification's default is 1)
+    // is named too.
+    EXPECT_NE(text.find("rough transmission, smooth glass instead ('tinted' (roughnessFactor 1))"),
+              std::string::npos)
+        << text;
+    EXPECT_EQ(text.find("'clear'"), std::string::npos) << text;
+    EXPECT_EQ(text.find("'solid'"), std::string::npos) << text;
+    EXPECT_EQ(text.find("'first'"), std::string::npos) << text;
+}
+
 // The default material of the specification (no pbrMetallicRoughness): a rough white metal.
 TEST(GltfFeatures, MaterialWithoutMetallicRoughnessIsARoughWhiteMetal) {
     const Scene scene = plainGltfWith([](nlohmann::json& g) {

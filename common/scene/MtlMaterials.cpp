@@ -232,8 +232,37 @@ Material materialFromMtl(const tinyobj::material_t& mtl, const std::string& mtlP
     if (m.alpha <= 0.0f)
         spdlog::warn("{}: d 0 (or Tr 1) makes the material invisible: rays pass through it", where);
 
+    // map_Ke: an emissive texture, per texel as glTF's emissiveTexture (the client's
+    // EmissiveTexture.h). It multiplies Ke; a material that names the texture but says no Ke
+    // emits the texture itself (Ke 1), since the texture would otherwise mean nothing. Ke
+    // written out as black keeps the material dark, as a glTF emissiveFactor of zero does.
+    if (!mtl.emissive_texname.empty()) {
+        const bool saysKe =
+            mtlLine(mtlText, mtl.name, "Ke") != mtlLine(mtlText, mtl.name, "newmtl");
+        if (!saysKe && !m.isEmissive()) m.emission = glm::vec3(1.0f);
+        if (m.isEmissive()) {
+            m.emissionTexture = texture(mtl.emissive_texname, "map_Ke", TextureEncoding::Colour);
+        } else {
+            spdlog::warn("{}: map_Ke '{}' under Ke 0 emits nothing (Ke multiplies the texture)",
+                         where, mtl.emissive_texname);
+        }
+    }
+
+    // norm: a tangent-space normal map (green toward +v, -bm scaling its tilt), as glTF's
+    // normalTexture; a bump map in the same material is then not used (one shading normal).
+    if (!mtl.normal_texname.empty()) {
+        m.normalTexture = texture(mtl.normal_texname, "norm", TextureEncoding::Data);
+        const float bm = static_cast<float>(mtl.normal_texopt.bump_multiplier);
+        m.normalScale = std::isfinite(bm) ? bm : 1.0f;
+        if (!mtl.bump_texname.empty())
+            spdlog::warn(
+                "{}: both norm and bump / map_bump: the normal map '{}' is used, the bump "
+                "map '{}' is not",
+                where, mtl.normal_texname, mtl.bump_texname);
+    }
+
     // bump / map_bump (-bm its scale): a height map, or a normal map where it reads as one.
-    if (!mtl.bump_texname.empty()) {
+    if (!mtl.bump_texname.empty() && mtl.normal_texname.empty()) {
         const int index =
             texture(mtl.bump_texname, bumpStatement(mtlText, mtl.name), TextureEncoding::Data);
         const float bm = static_cast<float>(mtl.bump_texopt.bump_multiplier);
@@ -257,11 +286,9 @@ std::vector<std::string> unmodelledMtlStatements(const tinyobj::material_t& mtl)
     std::vector<std::string> out;
     if (mtl.dissolve < 1.0 && (mtl.illum == 4 || mtl.illum == 6 || mtl.illum == 7))
         out.push_back("d / Tr on glass (ignored: glass transmits by its Fresnel terms)");
-    if (!mtl.normal_texname.empty()) out.push_back("norm");
     if (!mtl.displacement_texname.empty()) out.push_back("disp");
     if (!mtl.specular_texname.empty()) out.push_back("map_Ks");
     if (!mtl.specular_highlight_texname.empty()) out.push_back("map_Ns");
-    if (!mtl.emissive_texname.empty()) out.push_back("map_Ke");
     return out;
 }
 

@@ -113,15 +113,15 @@ TEST(ObjLoader, NegativeIndicesAndDegenerateTrianglesAreKept) {
 TEST(MtlMapping, UnmodelledStatementsAreNamedOncePerFile) {
     test::CapturedLog log;
     loadObjText("v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\nusemtl b\nf 1 3 2\n",
-                "newmtl a\nKd 0.5 0.5 0.5\nd 0.5\nnorm h.png\n"
-                "newmtl b\nKd 0.5 0.5 0.5\nnorm h.png\nmap_Ks s.png\n");
+                "newmtl a\nKd 0.5 0.5 0.5\nd 0.5\ndisp h.png\n"
+                "newmtl b\nKd 0.5 0.5 0.5\ndisp h.png\nmap_Ks s.png\n");
     const std::string text = log.text();
     EXPECT_CONTAINS(text, "m.mtl: statements not modelled, rendered without them: ");
-    EXPECT_CONTAINS(text, "norm");
+    EXPECT_CONTAINS(text, "disp");
     EXPECT_CONTAINS(text, "map_Ks");
     // d is modelled now (stochastic coverage): not named.
     EXPECT_EQ(text.find("d / Tr"), std::string::npos) << text;
-    EXPECT_EQ(text.find("norm"), text.rfind("norm")) << text;
+    EXPECT_EQ(text.find("disp"), text.rfind("disp")) << text;
     test::CapturedLog quiet;
     loadObjText(kTriangles, "newmtl a\nKd 0.5 0.5 0.5\nd 1\n");
     EXPECT_EQ(quiet.text().find("not modelled"), std::string::npos) << quiet.text();
