@@ -7,12 +7,9 @@
 #include <boost/asio/post.hpp>
 
 #include "Codec.h"
-#include "ImageSize.h"
-#include "LightingReport.h"
 #include "LocalClientLaunch.h"
 #include "OpenPort.h"
-#include "OptionWarnings.h"
-#include "RenderFlags.h"
+#include "SessionScene.h"
 #include "render/Tile.h"
 #include "scene/RenderSettingsJson.h"
 #include "scene/SceneError.h"
@@ -57,24 +54,7 @@ Master::~Master() = default;
 
 void Master::loadScene() {
     SceneBundle bundle;
-    SceneLoadOptions loadOptions;
-    loadOptions.allowOutsidePaths = options_.allowOutsidePaths;
-    loadOptions.headlight = options_.headlight;
-    scene_ = loadSceneFile(options_.scene, &bundle, loadOptions);
-    reportLighting(scene_, options_);
-    const nlohmann::json overrides = nlohmann::json::parse(options_.renderOverridesJson);
-    try {
-        applyRenderSettingsJson(overrides, scene_.render, "command line", "/render");
-    } catch (const SceneError& e) {
-        throw std::invalid_argument(commandLineMessage(e));  // names the flag, not the key
-    }
-    for (const std::string& warning : uselessOptionWarnings(options_, overrides, scene_.render))
-        spdlog::warn("{}", warning);
-    const ImageSize size = overriddenImageSize({scene_.image.width, scene_.image.height},
-                                               options_.width, options_.height);
-    scene_.image.width = size.width;
-    scene_.image.height = size.height;
-    if (options_.exposureSet) scene_.image.exposure = options_.exposure;
+    scene_ = loadSessionScene(options_, bundle);
     sceneData_.bundle = std::move(bundle);
     sceneData_.settings = scene_.render;
     sceneData_.image = scene_.image;
@@ -578,24 +558,7 @@ void Master::writeStatistics() {
     spdlog::info("{} frames in {:.2f} s: {:.2f} fps", nextFrameToFinish_, end - start,
                  stats_.fps(end - start));
     if (!options_.statsJson.empty())
-        stats_.writeJson(options_.statsJson, sessionJson(), start, end);
-}
-
-nlohmann::json Master::sessionJson() const {
-    // Every setting that shaped the run, so that two runs' statistics can be told apart.
-    const RenderSettings& s = scene_.render;
-    return {{"scene", options_.scene.string()},
-            {"width", scene_.image.width},
-            {"height", scene_.image.height},
-            {"exposure", scene_.image.exposure},
-            {"integrator", s.integrator == IntegratorKind::Path ? "path" : "igi"},
-            {"gi", giModeName(s.gi)},
-            {"seed", s.seed},
-            {"frames", options_.frames},
-            {"animation", options_.animation.string()},
-            {"local_clients", options_.localClients},
-            {"remote_clients", options_.remoteClients},
-            {"render", renderSettingsJson(s)}};
+        stats_.writeJson(options_.statsJson, sessionJson(options_, scene_), start, end);
 }
 
 std::uint32_t Master::maxTileResultBytes() const {

@@ -68,7 +68,6 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     /// Without --frames, an animation runs to its last keyframe; a shorter --frames is warned.
     void fitFramesToAnimation(const Animation& animation);
     /// The run's settings, for --stats-json.
-    nlohmann::json sessionJson() const;
     std::uint32_t maxTileResultBytes() const;
     void startControl();
     void startLocalClients();
