@@ -1,4 +1,5 @@
 #include "net/ClusterKey.h"
+#include "util/TestPaths.h"
 
 #include <filesystem>
 #include <fstream>
@@ -26,7 +27,7 @@ TEST(ClusterKey, ProofsAgreeOnlyWithTheSameSecretAndNonces) {
 
 TEST(ClusterKey, ShortSecretsAreRefusedAndFilesAreRead) {
     EXPECT_THROW(ClusterKey::fromSecret("short"), std::invalid_argument);
-    const auto file = std::filesystem::temp_directory_path() / "igi-secret-test";
+    const auto file = testing::scratchPath("secret");
     std::ofstream(file) << "a secret long enough to use\n";
     const auto m = ClusterKey::randomNonce(), c = ClusterKey::randomNonce();
     EXPECT_TRUE(

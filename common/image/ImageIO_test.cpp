@@ -1,4 +1,5 @@
 #include "image/ImageIO.h"
+#include "util/TestPaths.h"
 
 #include <filesystem>
 
@@ -11,7 +12,7 @@ TEST(ImageIO, ExrRoundTripsLinearValuesIncludingLargeOnes) {
     Image image(3, 2);
     image.at(0, 0) = glm::vec3(0.25f, 1e6f, 1e-6f);
     image.at(2, 1) = glm::vec3(123.5f, 0, 7);
-    const auto path = std::filesystem::temp_directory_path() / "igi_imageio_test.exr";
+    const auto path = testing::scratchPath("imageio.exr");
     writeImage(path, image);
     const Image back = readImage(path);
     ASSERT_EQ(back.width, 3);
@@ -26,7 +27,7 @@ TEST(ImageIO, PngIsToneMappedSrgbAndClipped) {
     Image image(2, 1);
     image.at(0, 0) = glm::vec3(0.5f, 2.0f, 0.0f);
     image.at(1, 0) = glm::vec3(0.25f);
-    const auto path = std::filesystem::temp_directory_path() / "igi_imageio_test.png";
+    const auto path = testing::scratchPath("imageio.png");
     writeImage(path, image, 1.0f);  // one stop up: 0.5 -> 1.0, 0.25 -> 0.5
     const Image back = readImage(path);
     EXPECT_NEAR(back.at(0, 0).x, 1.0f, 1e-3f);

@@ -19,13 +19,14 @@
 #include "scene/TestScenes.h"
 #include "scene/TextureLoader.h"
 #include "util/ExpectContains.h"
+#include "util/TestPaths.h"
 
 namespace igi {
 namespace {
 
 // A PNG of `channels` 8-bit channels, row-major from the top, encoded by OpenImageIO.
 std::string pngBytes(int width, int height, int channels, const std::vector<unsigned char>& px) {
-    const auto path = std::filesystem::temp_directory_path() / "igi-alpha-test.png";
+    const auto path = testing::scratchPath("alpha.png");
     auto out = OIIO::ImageOutput::create(path.string());
     EXPECT_TRUE(out);
     if (!out) return "";

@@ -12,6 +12,7 @@
 #include "scene/FileSource.h"
 #include "scene/TestScenes.h"
 #include "scene/TextureLoader.h"
+#include "util/TestPaths.h"
 
 namespace igi {
 namespace {
@@ -72,7 +73,7 @@ TEST(DecodeTexture, PpmIsReadTopRowFirstAndLinearized) {
 
 // A 1 x 2 grey image (white above black) encoded by OpenImageIO in the format of `ext`.
 std::string greyImageBytes(const std::string& ext) {
-    const auto path = std::filesystem::temp_directory_path() / ("igi-texture-test-grey." + ext);
+    const auto path = testing::scratchPath("grey." + ext);
     auto out = OIIO::ImageOutput::create(path.string());
     EXPECT_TRUE(out);
     if (!out) return "";
