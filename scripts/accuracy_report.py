@@ -121,9 +121,9 @@ def log(msg):
     print(f"[accuracy {time.strftime('%H:%M:%S')}] {msg}", flush=True)
 
 
-def frame_counts(n):
-    """1, 2, 4, ... up to n, and n: the accumulated images the curves keep."""
-    ks, k = [], 1
+def frame_counts(n, start=1):
+    """start, 2 start, 4 start, ... below n, and n: the accumulated images the curves keep."""
+    ks, k = [], start
     while k < n:
         ks.append(k)
         k *= 2

@@ -43,12 +43,7 @@ def log(msg):
 
 def checkpoints(frames):
     """Accumulated frame counts 4, 8, 16, ... up to `frames` (and `frames`)."""
-    ks, k = [], 4
-    while k < frames:
-        ks.append(k)
-        k *= 2
-    ks.append(frames)
-    return ks
+    return accuracy_report.frame_counts(frames, start=4)
 
 
 def session(bench, scene, args, folder, seed, ks):
