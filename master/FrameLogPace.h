@@ -2,10 +2,11 @@
 
 namespace igi {
 
-/// At most one frame line per interval, for a live session on a terminal: one line a frame
-/// there scrolls hundreds of lines a second past the user (a --frames 0 session at a small size
-/// wrote 405 KB in 49 s). A log file keeps every frame line: tests and scripts/perf_report.py
-/// read them.
+/// At most one frame line per interval, for a live session (--frames 0): one line a frame
+/// scrolls hundreds of lines a second past a user on a terminal, and fills a log file without
+/// end (a session at a small size wrote 405 KB in 49 s). The frames left out are logged at debug
+/// level, for tests that follow every frame; a finite run keeps every frame line at info
+/// (scripts/perf_report.py reads them).
 class FrameLogPace {
   public:
     explicit FrameLogPace(double intervalSeconds = 1.0);

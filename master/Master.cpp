@@ -548,8 +548,12 @@ void Master::startLocalClients() {
     if (options_.localClients <= 0) return;
     const LocalClientLaunch launch = localClientLaunch(
         options_, roster_->port(), roster_->localSecret(), ThreadPool::defaultThreads());
+    // Under a progress line, the clients' own lines go above it, not into it.
+    LocalClients::LineHandler onLine;
+    if (progress_)
+        onLine = [progress = progress_](const std::string& l) { progress->printAbove(l); };
     localClients_.start(LocalClients::clientExecutableBesideSelf(), launch.arguments,
-                        options_.localClients, launch.environment);
+                        options_.localClients, launch.environment, std::move(onLine));
 }
 
 void Master::writeStatistics() {

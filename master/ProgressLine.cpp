@@ -11,53 +11,70 @@
 
 namespace igi {
 
-/// Writes log records to stderr above the progress line: "\r\033[K" clears the line, the record
+/// Writes log records to `out` above the progress line: "\r\033[K" clears the line, the record
 /// prints, the line is drawn again. One mutex orders records and redraws from any thread.
 class ProgressSink : public spdlog::sinks::base_sink<std::mutex> {
   public:
+    explicit ProgressSink(std::FILE* out) : out_(out) {}
+
     void setLine(std::string line) {
         std::lock_guard lock(mutex_);
         line_ = std::move(line);
-        std::fprintf(stderr, "\r\033[K%s", line_.c_str());
-        std::fflush(stderr);
+        std::fprintf(out_, "\r\033[K%s", line_.c_str());
+        std::fflush(out_);
     }
     void endLine() {
         std::lock_guard lock(mutex_);
-        if (!line_.empty()) std::fputc('\n', stderr);
+        if (!line_.empty()) std::fputc('\n', out_);
         line_.clear();
-        std::fflush(stderr);
+        std::fflush(out_);
+    }
+    void printAbove(const std::string& text) {
+        std::lock_guard lock(mutex_);
+        writeAbove(text.data(), text.size(), true);
     }
 
   protected:
     void sink_it_(const spdlog::details::log_msg& msg) override {
         spdlog::memory_buf_t text;
         formatter_->format(msg, text);
-        std::fputs("\r\033[K", stderr);
-        std::fwrite(text.data(), 1, text.size(), stderr);
-        std::fputs(line_.c_str(), stderr);
-        std::fflush(stderr);
+        writeAbove(text.data(), text.size(), false);
     }
-    void flush_() override { std::fflush(stderr); }
+    void flush_() override { std::fflush(out_); }
 
   private:
+    // The caller holds mutex_.
+    void writeAbove(const char* text, std::size_t size, bool addNewline) {
+        std::fputs("\r\033[K", out_);
+        std::fwrite(text, 1, size, out_);
+        if (addNewline) std::fputc('\n', out_);
+        std::fputs(line_.c_str(), out_);
+        std::fflush(out_);
+    }
+
+    std::FILE* out_;
     std::string line_;
 };
 
 std::shared_ptr<ProgressLine> ProgressLine::attachIfTerminal(int totalFrames, bool limited) {
     if ((totalFrames <= 0 && !limited) || !isatty(STDERR_FILENO)) return nullptr;
-    auto sink = std::make_shared<ProgressSink>();
+    auto line = std::make_shared<ProgressLine>(totalFrames, stderr);
     auto& sinks = spdlog::default_logger()->sinks();
     sinks.clear();
-    sinks.push_back(sink);
-    return std::make_shared<ProgressLine>(totalFrames, std::move(sink));
+    sinks.push_back(line->sink_);
+    return line;
 }
 
-ProgressLine::ProgressLine(int totalFrames, std::shared_ptr<ProgressSink> sink)
-    : totalFrames_(totalFrames), sink_(std::move(sink)) {}
+ProgressLine::ProgressLine(int totalFrames, std::FILE* out)
+    : totalFrames_(totalFrames), sink_(std::make_shared<ProgressSink>(out)) {}
 
 void ProgressLine::update(int framesDone, double fps, int clients, const std::string& error) {
     const std::string line = format(framesDone, totalFrames_, fps, clients);
     sink_->setLine(error.empty() ? line : line + ", " + error);
+}
+
+void ProgressLine::printAbove(const std::string& line) {
+    sink_->printAbove(line);
 }
 
 void ProgressLine::finish() {

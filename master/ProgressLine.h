@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdio>
 #include <memory>
 #include <string>
 
@@ -23,12 +24,17 @@ class ProgressLine {
     /// without a frame total.
     static std::shared_ptr<ProgressLine> attachIfTerminal(int totalFrames, bool limited = false);
 
-    explicit ProgressLine(int totalFrames, std::shared_ptr<ProgressSink> sink);
+    /// A line drawn on `out`; attachIfTerminal makes one on stderr and routes the log through it.
+    ProgressLine(int totalFrames, std::FILE* out);
     /// `error`: the estimated error and the time to the target (ErrorForecast::describe),
     /// appended when not empty.
     void update(int framesDone, double fps, int clients, const std::string& error = {});
     /// The run's length, once known (an --animation without --frames runs to its end).
     void setTotalFrames(int totalFrames) { totalFrames_ = totalFrames; }
+    /// Prints `line` (a local client's own stderr line, whole, without its newline) above the
+    /// progress line, as a log record is: a client writing to the terminal itself would cut
+    /// into the line.
+    void printAbove(const std::string& line);
     /// Leaves the last state on its own line.
     void finish();
 

@@ -329,7 +329,9 @@ int main(int argc, char** argv) {
     // A target or a time limit ends a run too: it gets the line (with no frame total).
     const bool limited = o.targetError > 0 || o.timeLimitSeconds > 0;
     auto progress = igi::ProgressLine::attachIfTerminal(o.frames, limited);
-    o.paceFrameLines = o.frames == 0 && !limited && isatty(STDERR_FILENO);
+    // A live session logs a frame line a second (every frame's line is at debug level), on a
+    // terminal and in a log file alike: a line a frame fills a log without end.
+    o.paceFrameLines = o.frames == 0 && !limited;
     spdlog::set_level(spdlog::level::from_str(logLevel));
     spdlog::set_pattern("[%H:%M:%S.%e] [master] [%l] %v");
     o.scene = scene;

@@ -22,19 +22,6 @@ namespace {
 using namespace igi::testing;
 namespace fs = std::filesystem;
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
-
-// The default scene, small, one local client, `frames` frames, and `extra`.
-ProcessResult runMaster(const fs::path& log, int frames, const std::vector<std::string>& extra,
-                        double timeout = 300) {
-    auto args = sceneArgs(frames);
-    args.insert(args.end(), {"--local-clients", "1"});
-    args.insert(args.end(), extra.begin(), extra.end());
-    return runProcess(masterCommand(args), log, timeout);
-}
-
 nlohmann::json replyOf(const ProcessResult& r) {
     return nlohmann::json::parse(r.output, nullptr, false);
 }
@@ -273,32 +260,40 @@ TEST(CommandLine, PortErrorsNameTheFlagAndTheAddress) {
     fs::remove_all(dir);
 }
 
-// Item 9: a live session on a terminal logs a frame line a second, not one a frame.
-TEST(CommandLine, ALiveSessionOnATerminalLogsAFrameLineASecond) {
-    const fs::path dir = scratchDir("live-tty");
-    const std::string port = std::to_string(freePort());
-    auto args = sceneArgs(0);
-    args.insert(args.end(), {"--local-clients", "1", "--control", "127.0.0.1:" + port});
-    std::string line;
-    for (const std::string& a : masterCommand(args)) line += (line.empty() ? "'" : " '") + a + "'";
-    // util-linux's script runs the master on a pseudo-terminal (as tests/Progress_test.cpp).
-    const fs::path log = dir / "tty.log";
-    const pid_t script =
-        spawnProcess({"/usr/bin/script", "-qec", line, (dir / "typescript").string()}, log);
-    ASSERT_FALSE(waitForLine(log, std::regex(R"(frame +0:)"), script).empty()) << readFile(log);
-    std::this_thread::sleep_for(std::chrono::seconds(3));
-    const nlohmann::json stop = replyOf(runCtl(dir / "stop.log", port, {"stop"}));
-    ASSERT_TRUE(stop.value("ok", false)) << stop.dump();
-    ASSERT_EQ(waitProcess(script, 120), 0) << readFile(log);
-    const std::string text = readFile(log);
-    const std::regex frameLine(R"(frame +\d+:)");
-    const auto lines = std::distance(std::sregex_iterator(text.begin(), text.end(), frameLine),
-                                     std::sregex_iterator());
-    const int frames = stop["frames_done"].get<int>();
-    EXPECT_GT(frames, 10) << "too slow to tell:\n" << text;
-    EXPECT_LE(lines, 6) << frames << " frames\n" << text;
-    EXPECT_TRUE(contains(text, "frames since the last line)")) << text;
-    fs::remove_all(dir);
+// Item 9: a live session logs a frame line a second, not one a frame, on a terminal and in a
+// log file alike.
+TEST(CommandLine, ALiveSessionLogsAFrameLineASecond) {
+    for (const bool terminal : {true, false}) {
+        SCOPED_TRACE(terminal ? "on a terminal" : "in a log file");
+        const fs::path dir = scratchDir("live-log");
+        const std::string port = std::to_string(freePort());
+        auto args = sceneArgs(0, "127.0.0.1:0", "info");
+        args.insert(args.end(), {"--local-clients", "1", "--control", "127.0.0.1:" + port});
+        std::vector<std::string> command = masterCommand(args);
+        if (terminal) {
+            // util-linux's script runs the master on a pseudo-terminal (as
+            // tests/Progress_test.cpp).
+            std::string line;
+            for (const std::string& a : command) line += (line.empty() ? "'" : " '") + a + "'";
+            command = {"/usr/bin/script", "-qec", line, (dir / "typescript").string()};
+        }
+        const fs::path log = dir / "master.log";
+        const pid_t master = spawnProcess(command, log);
+        ASSERT_FALSE(waitForLine(log, std::regex(R"(frame +0:)"), master).empty()) << readFile(log);
+        std::this_thread::sleep_for(std::chrono::seconds(3));
+        const nlohmann::json stop = replyOf(runCtl(dir / "stop.log", port, {"stop"}));
+        ASSERT_TRUE(stop.value("ok", false)) << stop.dump();
+        ASSERT_EQ(waitProcess(master, 120), 0) << readFile(log);
+        const std::string text = readFile(log);
+        const std::regex frameLine(R"(frame +\d+:)");
+        const auto lines = std::distance(std::sregex_iterator(text.begin(), text.end(), frameLine),
+                                         std::sregex_iterator());
+        const int frames = stop["frames_done"].get<int>();
+        EXPECT_GT(frames, 10) << "too slow to tell:\n" << text;
+        EXPECT_LE(lines, 6) << frames << " frames\n" << text;
+        EXPECT_TRUE(contains(text, "frames since the last line)")) << text;
+        fs::remove_all(dir);
+    }
 }
 
 // Item 14: under the progress line, local clients' info lines do not cut into it.

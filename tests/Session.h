@@ -37,14 +37,32 @@ inline std::vector<std::string> clientCommand(const std::vector<std::string>& ar
     return command;
 }
 
-/// The default scene, small, for `frames` frames (0: until stopped), any free port.
-inline std::vector<std::string> sceneArgs(int frames, const std::string& listen = "127.0.0.1:0") {
+/// The default scene, small, for `frames` frames (0: until stopped), any free port. A live
+/// session logs a frame line a second at info level and every frame's line at debug: its tests
+/// follow the frames, so it logs at debug unless `logLevel` says.
+inline std::vector<std::string> sceneArgs(int frames, const std::string& listen = "127.0.0.1:0",
+                                          std::string logLevel = "") {
+    if (logLevel.empty()) logLevel = frames == 0 ? "debug" : "info";
     return {"--scene",     (sourceDir() / "scenes/cornell/cornell.json").string(),
             "--width",     "160",
             "--height",    "120",
             "--frames",    std::to_string(frames),
             "--listen",    listen,
-            "--log-level", "info"};
+            "--log-level", logLevel};
+}
+
+inline bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+/// Runs the master on the default scene, small, with one local client, for `frames` frames and
+/// the arguments `extra`, its output going to `log`.
+inline ProcessResult runMaster(const std::filesystem::path& log, int frames,
+                               const std::vector<std::string>& extra, double timeout = 300) {
+    auto args = sceneArgs(frames);
+    args.insert(args.end(), {"--local-clients", "1"});
+    args.insert(args.end(), extra.begin(), extra.end());
+    return runProcess(masterCommand(args), log, timeout);
 }
 
 /// Waits until `log` contains a match of `pattern` (or the process ended); returns the match

@@ -22,18 +22,6 @@ namespace {
 using namespace igi::testing;
 namespace fs = std::filesystem;
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
-
-// The default scene, small, one local client, `frames` frames, and `extra`.
-ProcessResult runMaster(const fs::path& log, int frames, const std::vector<std::string>& extra) {
-    auto args = sceneArgs(frames);
-    args.insert(args.end(), {"--local-clients", "1"});
-    args.insert(args.end(), extra.begin(), extra.end());
-    return runProcess(masterCommand(args), log, 300);
-}
-
 nlohmann::json readJson(const fs::path& path) {
     std::ifstream in(path);
     return nlohmann::json::parse(in, nullptr, false);
