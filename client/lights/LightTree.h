@@ -80,7 +80,10 @@ class LightTree {
         std::uint32_t light = 0;   ///< a leaf's light
     };
     struct Node {  ///< four children, lane by lane; unused lanes have no power
-        float loX[4], loY[4], loZ[4], hiX[4], hiY[4], hiZ[4];
+        // Each child's box as importance() reads it, computed once when the tree is built
+        // rather than at every weighing: its centre 0.5 (lo + hi) and a quarter of its squared
+        // diagonal, the radius^2 of its bounding sphere (the same operations, so the same bits).
+        float centreX[4], centreY[4], centreZ[4], radius2[4];
         float axisX[4], axisY[4], axisZ[4], cosSpread[4], sinSpread[4], power[4];
         std::uint32_t child[4];  ///< a node's index, or a light's where `leaves` has the bit
         std::uint32_t leaves = 0;
