@@ -52,8 +52,13 @@ std::uint32_t VplChoice::choose(glm::vec3 origin, glm::vec3 n, glm::vec3 f, floa
     const std::size_t padded = lum.size();
     // Per VPL: its importance w_i, and the running sums of the w and of the reachable VPLs
     // up to it (so that the CDF needs no second walk in sequence).
-    thread_local std::vector<float> weight, sumW, sumR;
-    weight.resize(padded), sumW.resize(padded), sumR.resize(padded);
+    thread_local std::vector<float> weights, sumsW, sumsR;
+    weights.resize(padded), sumsW.resize(padded), sumsR.resize(padded);
+    // Their memory by plain pointers: the loops then address it without looking up the
+    // thread's storage again at every store.
+    float* const weight = weights.data();
+    float* const sumW = sumsW.data();
+    float* const sumR = sumsR.data();
     const Float4 ox(origin.x), oy(origin.y), oz(origin.z), m2(dmin2), zero(0.0f), one(1.0f);
     Float4 carryW, carryR;
     for (std::size_t i = 0; i < padded; i += 4) {
@@ -116,16 +121,17 @@ std::uint32_t VplChoice::choose(glm::vec3 origin, glm::vec3 n, glm::vec3 f, floa
         const Float4 upTo = max(raw, shiftIn(raw, below));
         const Float4 times = upTo - shiftIn(upTo, below);
         const unsigned took = laneBits(greater(times, zero));
-        float t[4];
-        if (took) times.store(t);
-        for (unsigned bits = took; bits; bits &= bits - 1) {
-            const int k = __builtin_ctz(bits);
-            const float p = a * weight[i + k] + b;
-            out[picked++] = {std::uint32_t(i + k), t[k] / (draws * p)};
+        if (took) {
+            // The scales of the four lanes in one division (each lane as the scalar
+            // times / (draws (a w_i + b))), the taken ones written out.
+            float scale[4];
+            (times / (draws4 * (a4 * Float4::load(&weight[i]) + b4))).store(scale);
+            for (unsigned bits = took; bits; bits &= bits - 1) {
+                const int k = __builtin_ctz(bits);
+                out[picked++] = {std::uint32_t(i + k), scale[k]};
+            }
         }
-        float last[4];
-        upTo.store(last);
-        below = last[3];
+        below = lastLaneValue(upTo);
     }
     // The CDF may end a rounding error short of 1: the last reachable VPL takes what is left.
     if (below < draws) {
