@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "lights/VplWeights.h"
 #include "math/Color.h"
 #include "math/Float4.h"
 
@@ -59,47 +60,7 @@ std::uint32_t VplChoice::choose(glm::vec3 origin, glm::vec3 n, glm::vec3 f, floa
     float* const weight = weights.data();
     float* const sumW = sumsW.data();
     float* const sumR = sumsR.data();
-    const Float4 ox(origin.x), oy(origin.y), oz(origin.z), m2(dmin2), zero(0.0f), one(1.0f);
-    Float4 carryW, carryR;
-    for (std::size_t i = 0; i < padded; i += 4) {
-        const Float4 tx = Float4::load(&px[i]) - ox, ty = Float4::load(&py[i]) - oy,
-                     tz = Float4::load(&pz[i]) - oz;
-        const Float4 d2 = tx * tx + ty * ty + tz * tz;
-        const Float4 cx = Float4(n.x) * tx + Float4(n.y) * ty + Float4(n.z) * tz;
-        const Float4 cf = Float4(f.x) * tx + Float4(f.y) * ty + Float4(f.z) * tz;
-        const Float4 cy = zero - (Float4::load(&nx[i]) * tx + Float4::load(&ny[i]) * ty +
-                                  Float4::load(&nz[i]) * tz);
-        // cos_x cos_y = cx cy / d^2 with the unnormalized direction t.
-        const Float4 w = Float4::load(&lum[i]) * cx * cy / (d2 * max(d2, m2));
-        const Float4 can =
-            greater(cx, zero) & greater(cf, zero) & greater(cy, zero) & greater(w, zero);
-        Float4 kept = select(can, w, zero);
-        const unsigned reach = laneBits(can);
-        const unsigned lobes = ggxBits[i / 4];
-        if (reach && (ggxReceiver || (reach & lobes))) {
-            // The lanes a GGX lobe ranks, one at a time: w times what the lobes send toward
-            // the point relative to the Lambertian proxy lum(power + glossyPower).
-            float k4[4], x4[4], y4[4], z4[4];
-            kept.store(k4), tx.store(x4), ty.store(y4), tz.store(z4);
-            for (unsigned bits = reach; bits; bits &= bits - 1) {
-                const int k = __builtin_ctz(bits);
-                const glm::vec3 t(x4[k], y4[k], z4[k]);
-                const glm::vec3 dir = t / std::sqrt(glm::dot(t, t));  // toward the VPL
-                float ratio = 1.0f;
-                if (lobes & (1u << k))
-                    ratio = luminance(ggxVpls[ggxSlot[i + k]].towards(dir).intensity) / lum[i + k];
-                if (ggxReceiver) ratio *= receiver->sharpness(dir);
-                const float ranked = k4[k] * ratio;
-                k4[k] = std::isfinite(ranked) ? std::max(ranked, 1e-6f * k4[k]) : k4[k];
-            }
-            kept = Float4::load(k4);
-        }
-        kept.store(&weight[i]);
-        carryW = prefixSum(kept) + carryW;
-        carryR = prefixSum(select(can, one, zero)) + carryR;
-        carryW.store(&sumW[i]), carryR.store(&sumR[i]);
-        carryW = lastLane(carryW), carryR = lastLane(carryR);
-    }
+    vplWeights(*this, origin, n, f, dmin2, ggxReceiver, receiver, weight, sumW, sumR);
     const float sum = sumW[padded - 1], reachable = sumR[padded - 1];
     if (!(sum > 0) || !(reachable > 0) || !std::isfinite(sum)) return 0;
     // p_i = (1 - s) w_i / sum + s / reachable for the reachable VPLs, 0 for the others, so the
@@ -109,7 +70,7 @@ std::uint32_t VplChoice::choose(glm::vec3 origin, glm::vec3 n, glm::vec3 f, floa
     // no branch on the data but where a VPL took samples.
     const float a = (1.0f - kUniformShare) / sum, b = kUniformShare / reachable;
     const float draws = float(perPoint);
-    const Float4 a4(a), b4(b), draws4(draws), offset4(offset);
+    const Float4 a4(a), b4(b), draws4(draws), offset4(offset), zero(0.0f);
     std::uint32_t picked = 0;
     float below = 0;  // samples below the previous VPL's CDF
     for (std::size_t i = 0; i < padded && below < draws; i += 4) {
