@@ -235,18 +235,20 @@ bool LightTree::sample(glm::vec3 p, glm::vec3 n, float u, std::uint32_t& light, 
     float prob = 1;
     for (;;) {
         const Node& node = nodes_[index];
-        float weights[4];
-        const float* w = memo ? memo->find(index) : nullptr;
-        if (!w) {
-            importance(node, p, n, weights);
-            if (memo) memo->add(index, weights);
-            w = weights;
+        Weighed weighed;
+        const Weighed* at = memo ? memo->find(index) : nullptr;
+        if (!at) {
+            importance(node, p, n, weighed.weights);
+            const float* w = weighed.weights;
+            const float total = (w[0] + w[1]) + (w[2] + w[3]);
+            if (!(total > 0)) return false;
+            // The four shares in one division of four lanes (each lane as the scalar division).
+            (Float4::load(w) / Float4(total)).store(weighed.shares);
+            if (memo) memo->add(index, weighed);
+            at = &weighed;
         }
-        const float total = (w[0] + w[1]) + (w[2] + w[3]);
-        if (!(total > 0)) return false;
-        // The four shares in one division of four lanes (each lane as the scalar division).
-        float shares[4];
-        (Float4::load(w) / Float4(total)).store(shares);
+        const float* w = at->weights;
+        const float* shares = at->shares;
         // The child whose share of [0, 1) holds u; u rescaled within that share.
         int i = 0;
         float below = 0;
