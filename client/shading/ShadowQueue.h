@@ -37,7 +37,11 @@ class ShadowQueue {
              glm::vec3 glossy) {
         if (size_ == entries_.size()) grow(std::max<std::size_t>(64, 2 * size_));
         targets_[size_] = target;
-        Entry& e = entries_[size_++];  // field by field: see write()
+        // Field by field rather than `= {...}`: for the aggregate GCC may build a temporary on
+        // the stack and copy it with loads wider than the stores that wrote it, a
+        // store-forwarding stall (as EndPointShader's linkTo had). addEach's loop keeps the
+        // aggregate: there it takes fewer instructions (callgrind, Cornell scene).
+        Entry& e = entries_[size_++];
         e.direction = direction;
         e.tfar = tfar;
         e.irradiance = irradiance;
@@ -62,7 +66,7 @@ class ShadowQueue {
         const std::uint32_t point = currentPoint_;
         for (std::size_t k = 0; k < n; ++k) {
             const Connection c = at(k);
-            write(out[k], c, point);
+            out[k] = {c.direction, c.tfar, c.irradiance, c.glossy, point};
             targets[k] = c.target;
         }
         size_ += n;
@@ -82,17 +86,6 @@ class ShadowQueue {
         glm::vec3 irradiance, glossy;
         std::uint32_t point;
     };
-    /// Fills an entry field by field. Why not `e = {...}`: GCC builds that aggregate in a
-    /// temporary on the stack from 8- and 4-byte pieces and copies it with 16-byte loads, which
-    /// cannot be forwarded from those stores (a stall of a dozen cycles per connection, a
-    /// tenth of connectVpl's time on a glossy interior).
-    static void write(Entry& e, const Connection& c, std::uint32_t point) {
-        e.direction = c.direction;
-        e.tfar = c.tfar;
-        e.irradiance = c.irradiance;
-        e.glossy = c.glossy;
-        e.point = point;
-    }
     void grow(std::size_t capacity) {
         entries_.resize(capacity);
         targets_.resize(capacity);
