@@ -26,9 +26,12 @@ if ((${#scenes[@]} == 0)); then
 fi
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
+# --allow-outside-paths: the scenes are the caller's own choice, and the Sponza arcades
+# (scenes/sponza/arcades.json) read their meshes from ../shared/scenes.
 render() {  # BIN SCENE OUT.exr STATS.json
-  "$1/igi-master" --scene "$2" --local-clients "$clients" --frames "$frames" --width 320 \
-    --height 240 --gi "$gi" --output "$3" --stats-json "$4" --log-level warn >/dev/null
+  "$1/igi-master" --scene "$2" --allow-outside-paths --local-clients "$clients" \
+    --frames "$frames" --width 320 --height 240 --gi "$gi" --output "$3" --stats-json "$4" \
+    --log-level warn >/dev/null
 }
 shadow() { python3 -c "import json,sys; print(sum(f['shadow_rays'] for f in json.load(open(sys.argv[1]))['frames']))" "$1"; }
 for s in "${scenes[@]}"; do

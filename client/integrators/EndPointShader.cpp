@@ -31,19 +31,27 @@ struct Link {
     float d, d2, cosX, cosY;
 };
 
-// The link from `origin` (shading normal n, face normal f) to v; none where v is behind the
-// point or faces away from it (an omni light sample faces every way).
-std::optional<Link> linkTo(const Vpl& v, glm::vec3 origin, glm::vec3 n, glm::vec3 f) {
+// The link from `origin` (shading normal n, face normal f) to v, into `out`; false where v is
+// behind the point or faces away from it (an omni light sample faces every way). Written into
+// the caller's Link rather than returned as a std::optional: GCC moved that optional through
+// the stack with loads wider than the stores that wrote it, a store-forwarding stall that
+// cost a tenth of connectVpl's time.
+bool linkTo(const Vpl& v, glm::vec3 origin, glm::vec3 n, glm::vec3 f, Link& out) {
     const glm::vec3 toLight = v.position - origin;
     const float d2 = glm::dot(toLight, toLight);
-    if (!(d2 > 0)) return std::nullopt;
+    if (!(d2 > 0)) return false;
     const float d = std::sqrt(d2);
     const glm::vec3 w = toLight / d;
     const float cosX = glm::dot(n, w);
-    if (cosX <= 0 || glm::dot(f, w) <= 0) return std::nullopt;
+    if (cosX <= 0 || glm::dot(f, w) <= 0) return false;
     const float cosY = v.emittingCosine(w);
-    if (cosY <= 0) return std::nullopt;
-    return Link{w, d, d2, cosX, cosY};
+    if (cosY <= 0) return false;
+    out.w = w;
+    out.d = d;
+    out.d2 = d2;
+    out.cosX = cosX;
+    out.cosY = cosY;
+    return true;
 }
 
 float maxSharpnessOf(const std::vector<Material>& materials, const std::vector<Texture>& textures) {
@@ -162,18 +170,21 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
     // Direct light: not bounded (its singularity is the light's own size, and for a glossy
     // lobe the MIS weight takes the light samples out where BRDF sampling is better).
     auto addDirect = [&](const Vpl& v, std::uint32_t target) {
-        const std::optional<Link> link = linkTo(v, origin, n, x.faceNormal);
-        if (!link) return;
-        const auto [w, d, d2, cosX, cosY] = *link;
-        const float r = residual ? residualWeight(residual, b.sharpness(w)) : 1.0f;
+        Link link;
+        if (!linkTo(v, origin, n, x.faceNormal, link)) return;
+        const glm::vec3 w = link.w;
+        const float d = link.d, d2 = link.d2, cosX = link.cosX, cosY = link.cosY;
+        // The lobe toward w once for the sharpness, density and value below.
+        const float lobeW = glossy || residual ? b.lobeToward(w) : 0.0f;
+        const float r = residual ? residualWeight(residual, b.sharpness(w, lobeW)) : 1.0f;
         if (!(r > 0)) return;
         const glm::vec3 e = v.power * (cosX * cosY / d2 * r);
         glm::vec3 g(0.0f);
         if (glossy) {
             float mis = 1.0f;
             if (misWithContinuation && !v.omni)
-                mis = powerHeuristic(lightSamples * v.areaPdf * d2 / cosY, b.pdf(w));
-            g = e * b.glossy(w) * mis;
+                mis = powerHeuristic(lightSamples * v.areaPdf * d2 / cosY, b.pdf(w, lobeW));
+            g = e * b.glossy(w, lobeW) * mis;
         }
         connect(target, w, d, e, g);
     };
@@ -244,9 +255,10 @@ void EndPointShader::connectVpl(const ShadingPoint& x, const LightingSet& set, s
         queue.add(target, w, d * (1.0f - kVplShadowShrink), e, g);
     };
     // Indirect VPLs are never omni: linkTo takes the cosine at the VPL.
-    const std::optional<Link> link = linkTo(v, origin, n, x.faceNormal);
-    if (!link) return;
-    const auto [w, d, d2, cosX, cosY] = *link;
+    Link link;
+    if (!linkTo(v, origin, n, x.faceNormal, link)) return;
+    const glm::vec3 w = link.w;
+    const float d = link.d, d2 = link.d2, cosX = link.cosX, cosY = link.cosY;
     if (!glossy && residual == nullptr && set.boundShape == BoundShape::Clamp && !v.glossy()) {
         // Lambertian at both ends (sharpness 1, within any budget): the paper's clamp,
         // G <= cos cos / dmin^2. The common case, kept apart for speed.
@@ -257,14 +269,15 @@ void EndPointShader::connectVpl(const ShadingPoint& x, const LightingSet& set, s
         return;
     }
     const auto [intensity, sharpnessY] = v.towards(w);
-    const float sharpnessX = glossy ? b.sharpness(w) : b.diffuseShare;
+    const float lobeW = glossy ? b.lobeToward(w) : 0.0f;  // once for the sharpness and value
+    const float sharpnessX = glossy ? b.sharpness(w, lobeW) : b.diffuseShare;
     const float kept = keptFraction(d2, set.minDistance2, set.sharpnessBudget, sharpnessX,
                                     sharpnessY, set.boundShape);
     const float r = residualWeight(residual, sharpnessX);
     if (!(r > 0)) return;
     glm::vec3 e = intensity * (cosX * cosY / d2 * kept * r);
     if (scale != 1.0f) e *= scale;
-    const glm::vec3 g = glossy ? e * b.glossy(w) : glm::vec3(0.0f);
+    const glm::vec3 g = glossy ? e * b.glossy(w, lobeW) : glm::vec3(0.0f);
     connect(w, d, e, g);
 }
 
@@ -327,13 +340,14 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
     const glm::vec3 w = b.sample(u, uLobe);
     const float cosX = glm::dot(w, b.normal);
     if (cosX <= 0 || glm::dot(w, x.faceNormal) <= 0) return;
-    const float pdf = b.pdf(w);
+    const float lobeW = b.lobeToward(w);  // once for the density, sharpness and value
+    const float pdf = b.pdf(w, lobeW);
     if (!(pdf > 0)) return;
-    const float sharpnessX = b.sharpness(w);
+    const float sharpnessX = b.sharpness(w, lobeW);
     const float r = residualWeight(residual, sharpnessX);
     if (!(r > 0)) return;
     const float scale = cosX / (pdf * traced) * r;  // radiance from w times this estimates E
-    const glm::vec3 glossyF = glossy ? b.glossy(w) : glm::vec3(0.0f);
+    const glm::vec3 glossyF = glossy ? b.glossy(w, lobeW) : glm::vec3(0.0f);
     const bool compensate = compensate_ && set.minDistance2 > 0 && set.indirectLight;
 
     // Without a glossy lobe only the compensation needs the ray, and it has nothing to add

@@ -51,6 +51,12 @@ Cone unite(const Cone& a, const Cone& b) {
     return {glm::normalize(rotate(a.axis, k / len, spread - kConeSlack - ta)), std::cos(spread)};
 }
 
+// A quarter of the box's squared diagonal: the squared radius of its bounding sphere.
+float radius2Of(glm::vec3 lo, glm::vec3 hi) {
+    const float gx = hi.x - lo.x, gy = hi.y - lo.y, gz = hi.z - lo.z;
+    return 0.25f * (gx * gx + gy * gy + gz * gz);
+}
+
 float sinFromCos(float c) {
     return std::sqrt(std::max(0.0f, 1.0f - c * c));
 }
@@ -145,7 +151,7 @@ std::uint32_t LightTree::collapse(const std::vector<Binary>& tree, std::uint32_t
         node.parent = parent;
         node.slot = slot;
         for (int i = 0; i < 4; ++i) {  // unused lanes: no power, never chosen
-            node.loX[i] = node.loY[i] = node.loZ[i] = node.hiX[i] = node.hiY[i] = node.hiZ[i] = 0;
+            node.centreX[i] = node.centreY[i] = node.centreZ[i] = node.radius2[i] = 0;
             node.axisX[i] = node.axisY[i] = 0;
             node.axisZ[i] = 1;
             node.cosSpread[i] = -1;
@@ -165,8 +171,10 @@ std::uint32_t LightTree::collapse(const std::vector<Binary>& tree, std::uint32_t
             child = collapse(tree, children[i], index, std::uint32_t(i));
         }
         Node& node = nodes_[index];  // collapse() may have moved the nodes
-        node.loX[i] = c.lo.x, node.loY[i] = c.lo.y, node.loZ[i] = c.lo.z;
-        node.hiX[i] = c.hi.x, node.hiY[i] = c.hi.y, node.hiZ[i] = c.hi.z;
+        node.centreX[i] = 0.5f * (c.lo.x + c.hi.x);
+        node.centreY[i] = 0.5f * (c.lo.y + c.hi.y);
+        node.centreZ[i] = 0.5f * (c.lo.z + c.hi.z);
+        node.radius2[i] = radius2Of(c.lo, c.hi);
         node.axisX[i] = c.axis.x, node.axisY[i] = c.axis.y, node.axisZ[i] = c.axis.z;
         node.cosSpread[i] = c.cosSpread;
         node.sinSpread[i] = sinFromCos(c.cosSpread);
@@ -179,15 +187,11 @@ std::uint32_t LightTree::collapse(const std::vector<Binary>& tree, std::uint32_t
 
 void LightTree::importance(const Node& node, glm::vec3 p, glm::vec3 n, float out[4]) const {
     const Float4 zero(0.0f), one(1.0f);
-    const Float4 loX = Float4::load(node.loX), loY = Float4::load(node.loY),
-                 loZ = Float4::load(node.loZ), hiX = Float4::load(node.hiX),
-                 hiY = Float4::load(node.hiY), hiZ = Float4::load(node.hiZ);
-    const Float4 half(0.5f);
-    const Float4 vx = Float4(p.x) - half * (loX + hiX), vy = Float4(p.y) - half * (loY + hiY),
-                 vz = Float4(p.z) - half * (loZ + hiZ);
+    const Float4 vx = Float4(p.x) - Float4::load(node.centreX),
+                 vy = Float4(p.y) - Float4::load(node.centreY),
+                 vz = Float4(p.z) - Float4::load(node.centreZ);
     const Float4 d2 = vx * vx + vy * vy + vz * vz;
-    const Float4 gx = hiX - loX, gy = hiY - loY, gz = hiZ - loZ;
-    const Float4 radius2 = Float4(0.25f) * (gx * gx + gy * gy + gz * gz);
+    const Float4 radius2 = Float4::load(node.radius2);
     // The directions from p to a box lie within angle B of the direction to its centre (its
     // bounding sphere's); inside the sphere they can be anything (B = pi).
     const Float4 outside = greater(d2, radius2);
@@ -231,25 +235,30 @@ bool LightTree::sample(glm::vec3 p, glm::vec3 n, float u, std::uint32_t& light, 
     float prob = 1;
     for (;;) {
         const Node& node = nodes_[index];
-        float weights[4];
-        const float* w = memo ? memo->find(index) : nullptr;
-        if (!w) {
-            importance(node, p, n, weights);
-            if (memo) memo->add(index, weights);
-            w = weights;
+        Weighed weighed;
+        const Weighed* at = memo ? memo->find(index) : nullptr;
+        if (!at) {
+            importance(node, p, n, weighed.weights);
+            const float* w = weighed.weights;
+            const float total = (w[0] + w[1]) + (w[2] + w[3]);
+            if (!(total > 0)) return false;
+            // The four shares in one division of four lanes (each lane as the scalar division).
+            (Float4::load(w) / Float4(total)).store(weighed.shares);
+            if (memo) memo->add(index, weighed);
+            at = &weighed;
         }
-        const float total = (w[0] + w[1]) + (w[2] + w[3]);
-        if (!(total > 0)) return false;
+        const float* w = at->weights;
+        const float* shares = at->shares;
         // The child whose share of [0, 1) holds u; u rescaled within that share.
         int i = 0;
         float below = 0;
         for (; i < 3; ++i) {
-            const float share = w[i] / total;
+            const float share = shares[i];
             if (share > 0 && u < below + share) break;
             below += share;
         }
         while (!(w[i] > 0)) --i;  // only rounding at u -> 1 lands past the last live child
-        const float share = w[i] / total;
+        const float share = shares[i];
         u = std::clamp((u - below) / share, 0.0f, kOneBelow);
         prob *= share;
         if (node.leaves & (1u << i)) {

@@ -35,19 +35,25 @@ class LightTree {
 
     bool empty() const { return nodes_.empty(); }
 
-    /// The weights of the nodes a point's walks visited, so that its next walks (a point takes
-    /// several light samples) need not weigh them again. For one p and n only.
+    /// A node's four children at a point: their weights, and each one's share of their sum.
+    struct Weighed {
+        float weights[4];
+        float shares[4];
+    };
+    /// The weighed nodes a point's walks visited, so that its next walks (a point takes
+    /// several light samples) need not weigh them again, nor divide by their sums. For one p
+    /// and n only.
     class Memo {
       public:
-        const float* find(std::uint32_t node) const {
+        const Weighed* find(std::uint32_t node) const {
             for (int i = 0; i < size_; ++i)
-                if (nodes_[i] == node) return weights_[i];
+                if (nodes_[i] == node) return &weighed_[i];
             return nullptr;
         }
-        void add(std::uint32_t node, const float w[4]) {
+        void add(std::uint32_t node, const Weighed& w) {
             if (size_ == kSize) return;
             nodes_[size_] = node;
-            for (int k = 0; k < 4; ++k) weights_[size_][k] = w[k];
+            weighed_[size_] = w;
             ++size_;
         }
 
@@ -55,7 +61,7 @@ class LightTree {
         static constexpr int kSize = 12;
         int size_ = 0;
         std::uint32_t nodes_[kSize];
-        float weights_[kSize][4];
+        Weighed weighed_[kSize];
     };
 
     /// Chooses a light for the point p with unit normal n (only its front side receives; a zero
@@ -80,7 +86,10 @@ class LightTree {
         std::uint32_t light = 0;   ///< a leaf's light
     };
     struct Node {  ///< four children, lane by lane; unused lanes have no power
-        float loX[4], loY[4], loZ[4], hiX[4], hiY[4], hiZ[4];
+        // Each child's box as importance() reads it, computed once when the tree is built
+        // rather than at every weighing: its centre 0.5 (lo + hi) and a quarter of its squared
+        // diagonal, the radius^2 of its bounding sphere (the same operations, so the same bits).
+        float centreX[4], centreY[4], centreZ[4], radius2[4];
         float axisX[4], axisY[4], axisZ[4], cosSpread[4], sinSpread[4], power[4];
         std::uint32_t child[4];  ///< a node's index, or a light's where `leaves` has the bit
         std::uint32_t leaves = 0;

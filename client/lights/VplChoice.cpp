@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "lights/VplWeights.h"
 #include "math/Color.h"
 #include "math/Float4.h"
 
@@ -52,49 +53,14 @@ std::uint32_t VplChoice::choose(glm::vec3 origin, glm::vec3 n, glm::vec3 f, floa
     const std::size_t padded = lum.size();
     // Per VPL: its importance w_i, and the running sums of the w and of the reachable VPLs
     // up to it (so that the CDF needs no second walk in sequence).
-    thread_local std::vector<float> weight, sumW, sumR;
-    weight.resize(padded), sumW.resize(padded), sumR.resize(padded);
-    const Float4 ox(origin.x), oy(origin.y), oz(origin.z), m2(dmin2), zero(0.0f), one(1.0f);
-    Float4 carryW, carryR;
-    for (std::size_t i = 0; i < padded; i += 4) {
-        const Float4 tx = Float4::load(&px[i]) - ox, ty = Float4::load(&py[i]) - oy,
-                     tz = Float4::load(&pz[i]) - oz;
-        const Float4 d2 = tx * tx + ty * ty + tz * tz;
-        const Float4 cx = Float4(n.x) * tx + Float4(n.y) * ty + Float4(n.z) * tz;
-        const Float4 cf = Float4(f.x) * tx + Float4(f.y) * ty + Float4(f.z) * tz;
-        const Float4 cy = zero - (Float4::load(&nx[i]) * tx + Float4::load(&ny[i]) * ty +
-                                  Float4::load(&nz[i]) * tz);
-        // cos_x cos_y = cx cy / d^2 with the unnormalized direction t.
-        const Float4 w = Float4::load(&lum[i]) * cx * cy / (d2 * max(d2, m2));
-        const Float4 can =
-            greater(cx, zero) & greater(cf, zero) & greater(cy, zero) & greater(w, zero);
-        Float4 kept = select(can, w, zero);
-        const unsigned reach = laneBits(can);
-        const unsigned lobes = ggxBits[i / 4];
-        if (reach && (ggxReceiver || (reach & lobes))) {
-            // The lanes a GGX lobe ranks, one at a time: w times what the lobes send toward
-            // the point relative to the Lambertian proxy lum(power + glossyPower).
-            float k4[4], x4[4], y4[4], z4[4];
-            kept.store(k4), tx.store(x4), ty.store(y4), tz.store(z4);
-            for (unsigned bits = reach; bits; bits &= bits - 1) {
-                const int k = __builtin_ctz(bits);
-                const glm::vec3 t(x4[k], y4[k], z4[k]);
-                const glm::vec3 dir = t / std::sqrt(glm::dot(t, t));  // toward the VPL
-                float ratio = 1.0f;
-                if (lobes & (1u << k))
-                    ratio = luminance(ggxVpls[ggxSlot[i + k]].towards(dir).intensity) / lum[i + k];
-                if (ggxReceiver) ratio *= receiver->sharpness(dir);
-                const float ranked = k4[k] * ratio;
-                k4[k] = std::isfinite(ranked) ? std::max(ranked, 1e-6f * k4[k]) : k4[k];
-            }
-            kept = Float4::load(k4);
-        }
-        kept.store(&weight[i]);
-        carryW = prefixSum(kept) + carryW;
-        carryR = prefixSum(select(can, one, zero)) + carryR;
-        carryW.store(&sumW[i]), carryR.store(&sumR[i]);
-        carryW = lastLane(carryW), carryR = lastLane(carryR);
-    }
+    thread_local std::vector<float> weights, sumsW, sumsR;
+    weights.resize(padded), sumsW.resize(padded), sumsR.resize(padded);
+    // Their memory by plain pointers: the loops then address it without looking up the
+    // thread's storage again at every store.
+    float* const weight = weights.data();
+    float* const sumW = sumsW.data();
+    float* const sumR = sumsR.data();
+    vplWeights(*this, origin, n, f, dmin2, ggxReceiver, receiver, weight, sumW, sumR);
     const float sum = sumW[padded - 1], reachable = sumR[padded - 1];
     if (!(sum > 0) || !(reachable > 0) || !std::isfinite(sum)) return 0;
     // p_i = (1 - s) w_i / sum + s / reachable for the reachable VPLs, 0 for the others, so the
@@ -104,7 +70,7 @@ std::uint32_t VplChoice::choose(glm::vec3 origin, glm::vec3 n, glm::vec3 f, floa
     // no branch on the data but where a VPL took samples.
     const float a = (1.0f - kUniformShare) / sum, b = kUniformShare / reachable;
     const float draws = float(perPoint);
-    const Float4 a4(a), b4(b), draws4(draws), offset4(offset);
+    const Float4 a4(a), b4(b), draws4(draws), offset4(offset), zero(0.0f);
     std::uint32_t picked = 0;
     float below = 0;  // samples below the previous VPL's CDF
     for (std::size_t i = 0; i < padded && below < draws; i += 4) {
@@ -116,16 +82,17 @@ std::uint32_t VplChoice::choose(glm::vec3 origin, glm::vec3 n, glm::vec3 f, floa
         const Float4 upTo = max(raw, shiftIn(raw, below));
         const Float4 times = upTo - shiftIn(upTo, below);
         const unsigned took = laneBits(greater(times, zero));
-        float t[4];
-        if (took) times.store(t);
-        for (unsigned bits = took; bits; bits &= bits - 1) {
-            const int k = __builtin_ctz(bits);
-            const float p = a * weight[i + k] + b;
-            out[picked++] = {std::uint32_t(i + k), t[k] / (draws * p)};
+        if (took) {
+            // The scales of the four lanes in one division (each lane as the scalar
+            // times / (draws (a w_i + b))), the taken ones written out.
+            float scale[4];
+            (times / (draws4 * (a4 * Float4::load(&weight[i]) + b4))).store(scale);
+            for (unsigned bits = took; bits; bits &= bits - 1) {
+                const int k = __builtin_ctz(bits);
+                out[picked++] = {std::uint32_t(i + k), scale[k]};
+            }
         }
-        float last[4];
-        upTo.store(last);
-        below = last[3];
+        below = lastLaneValue(upTo);
     }
     // The CDF may end a rounding error short of 1: the last reachable VPL takes what is left.
     if (below < draws) {

@@ -87,10 +87,18 @@ struct SurfaceBrdf {
     float lobe(float cosAlpha) const {
         return cosAlpha > 0 ? std::pow(std::min(cosAlpha, 1.0f), exponent) : 0.0f;
     }
+    /// Phong: lobe() toward w, for the overloads below that take it: a connection that needs
+    /// the lobe's value, sharpness and density toward one direction pays for one pow, not three.
+    /// GGX: 0 (its overloads ignore it).
+    float lobeToward(glm::vec3 w) const {
+        return model == GlossyModel::Ggx ? 0.0f : lobe(glm::dot(w, mirror));
+    }
     /// The glossy lobe's value toward w (no cosine of incidence).
-    glm::vec3 glossy(glm::vec3 w) const {
+    glm::vec3 glossy(glm::vec3 w) const { return glossy(w, lobeToward(w)); }
+    /// The same, with lobeToward(w) given.
+    glm::vec3 glossy(glm::vec3 w, float lobeW) const {
         if (model == GlossyModel::Ggx) return ggx::evaluate(exponent, ks, normal, w, view());
-        return ks * ((exponent + 2.0f) * (0.5f * kInvPi) * lobe(glm::dot(w, mirror)));
+        return ks * ((exponent + 2.0f) * (0.5f * kInvPi) * lobeW);
     }
     glm::vec3 diffuse() const { return kd * kInvPi; }
 
@@ -98,10 +106,12 @@ struct SurfaceBrdf {
     /// (n + 2) / 2 in the peak of a pure Phong lobe (GGX: ggx::sharpness). The bound on VPL
     /// connections (ConnectionBound) is written in it, so that it does not depend on colours or
     /// textures.
-    float sharpness(glm::vec3 w) const {
+    float sharpness(glm::vec3 w) const { return sharpness(w, lobeToward(w)); }
+    /// The same, with lobeToward(w) given.
+    float sharpness(glm::vec3 w, float lobeW) const {
         if (model == GlossyModel::Ggx)
             return diffuseShare + glossyShare * ggx::sharpness(exponent, normal, w, view());
-        return diffuseShare + glossyShare * (0.5f * (exponent + 2.0f)) * lobe(glm::dot(w, mirror));
+        return diffuseShare + glossyShare * (0.5f * (exponent + 2.0f)) * lobeW;
     }
     float maxSharpness() const {
         if (model == GlossyModel::Ggx)
@@ -121,7 +131,9 @@ struct SurfaceBrdf {
     /// probability glossySampling(): Phong about the mirror direction, GGX by visible normals).
     glm::vec3 sample(glm::vec2 u, float uLobe) const;
     /// The mixture's density (solid angle) of direction w.
-    float pdf(glm::vec3 w) const {
+    float pdf(glm::vec3 w) const { return pdf(w, glossyShare > 0 ? lobeToward(w) : 0.0f); }
+    /// The same, with lobeToward(w) given.
+    float pdf(glm::vec3 w, float lobeW) const {
         const float cosTheta = glm::dot(w, normal);
         if (model == GlossyModel::Ggx) {
             const float pGlossy = glossySampling();
@@ -131,8 +143,7 @@ struct SurfaceBrdf {
         }
         float p = 0;
         if (diffuseShare > 0 && cosTheta > 0) p += diffuseShare * cosTheta * kInvPi;
-        if (glossyShare > 0)
-            p += glossyShare * (exponent + 1.0f) * (0.5f * kInvPi) * lobe(glm::dot(w, mirror));
+        if (glossyShare > 0) p += glossyShare * (exponent + 1.0f) * (0.5f * kInvPi) * lobeW;
         return p;
     }
 };

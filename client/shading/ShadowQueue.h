@@ -37,7 +37,16 @@ class ShadowQueue {
              glm::vec3 glossy) {
         if (size_ == entries_.size()) grow(std::max<std::size_t>(64, 2 * size_));
         targets_[size_] = target;
-        entries_[size_++] = {direction, tfar, irradiance, glossy, currentPoint_};
+        // Field by field rather than `= {...}`: for the aggregate GCC may build a temporary on
+        // the stack and copy it with loads wider than the stores that wrote it, a
+        // store-forwarding stall (as EndPointShader's linkTo had). addEach's loop keeps the
+        // aggregate: there it takes fewer instructions (callgrind, Cornell scene).
+        Entry& e = entries_[size_++];
+        e.direction = direction;
+        e.tfar = tfar;
+        e.irradiance = irradiance;
+        e.glossy = glossy;
+        e.point = currentPoint_;
     }
     /// A connection as add() takes it.
     struct Connection {

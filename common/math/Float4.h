@@ -83,6 +83,10 @@ inline Float4 prefixSum(Float4 a) {
 inline Float4 lastLane(Float4 a) {
     return Float4(_mm_shuffle_ps(a.v, a.v, 0xFF));
 }
+/// Lane 3 as a float, from the register (a store and a reload would wait for each other).
+inline float lastLaneValue(Float4 a) {
+    return _mm_cvtss_f32(_mm_shuffle_ps(a.v, a.v, 0xFF));
+}
 /// [first, a0, a1, a2].
 inline Float4 shiftIn(Float4 a, float first) {
     const __m128 shifted = _mm_castsi128_ps(_mm_slli_si128(_mm_castps_si128(a.v), 4));
@@ -172,6 +176,9 @@ inline Float4 prefixSum(Float4 a) {
 }
 inline Float4 lastLane(Float4 a) {
     return Float4(a.v[3]);
+}
+inline float lastLaneValue(Float4 a) {
+    return a.v[3];
 }
 inline Float4 shiftIn(Float4 a, float first) {
     Float4 r;

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Two builds' clients against raw Embree, taking turns on the same scenes (issue 36: the non-ray
+# work of many-light shading). For each scene, `igi-bench --threads 1` of BASE_BIN then of
+# NEW_BIN, RUNS times in alternation (so a load that comes or goes weighs on both), and per build
+# the medians of: client shadow rays / raw rtcOccluded16 per CPU second, and client CPU seconds
+# per frame; then NEW's frame time over BASE's (median of the per-run ratios).
+#
+# Usage: scripts/bench_side_by_side.sh BASE_BIN NEW_BIN [--runs 3] [--frames 4]
+#                                      [--segments 4000000] [--width 640 --height 480] [scene...]
+# BASE_BIN and NEW_BIN are folders holding igi-bench (a build's bin/). Without scenes: the
+# many-light interiors scenes/interior/glossy.json and sculptures.json, the Sponza arcades
+# (scenes/sponza/arcades.json, meshes from ../shared/scenes) and the default Cornell scene.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+base="$1" new="$2"
+shift 2
+runs=3 frames=4 segments=4000000 width=640 height=480 scenes=()
+while (($#)); do
+  case "$1" in
+    --runs) runs="$2"; shift 2 ;;
+    --frames) frames="$2"; shift 2 ;;
+    --segments) segments="$2"; shift 2 ;;
+    --width) width="$2"; shift 2 ;;
+    --height) height="$2"; shift 2 ;;
+    *) scenes+=("$1"); shift ;;
+  esac
+done
+if ((${#scenes[@]} == 0)); then
+  scenes=("$root/scenes/interior/glossy.json" "$root/scenes/interior/sculptures.json"
+          "$root/scenes/sponza/arcades.json" "$root/scenes/cornell/cornell.json")
+fi
+out="$(mktemp -d)"
+trap 'rm -rf "$out"' EXIT
+for s in "${scenes[@]}"; do
+  for ((r = 0; r < runs; ++r)); do
+    for side in base new; do
+      bin="$base"
+      [ "$side" = new ] && bin="$new"
+      # The JSON is the output from its first line that opens a brace: a scene's loading
+      # warnings (the Sponza textures' names) come before it on stdout.
+      "$bin/igi-bench" --scene "$s" --allow-outside-paths --threads 1 --frames "$frames" \
+        --segments "$segments" --width "$width" --height "$height" 2>/dev/null |
+        sed -n '/^{/,$p' >"$out/$side.$r.json"
+    done
+  done
+  python3 - "$s" "$out" "$runs" <<'EOF'
+import json, statistics, sys
+scene, out, runs = sys.argv[1], sys.argv[2], int(sys.argv[3])
+def load(side):
+    return [json.load(open(f"{out}/{side}.{r}.json")) for r in range(runs)]
+base, new = load("base"), load("new")
+def ratio(j): return j["client_shadow_rays_over_embree_occluded16_cpu"]
+def frame(j): return j["client_cpu_seconds"] / j["client_frames"]
+med = statistics.median
+print(f"{scene.split('/')[-1]}: shadow/occluded16 (CPU s) base {med(map(ratio, base)):.3f} "
+      f"new {med(map(ratio, new)):.3f}; client CPU s/frame base {med(map(frame, base)):.3f} "
+      f"new {med(map(frame, new)):.3f}; new/base frame time "
+      f"{med(frame(n) / frame(b) for b, n in zip(base, new)):.3f}; shadow rays "
+      f"{base[0]['client_shadow_rays']} {new[0]['client_shadow_rays']}")
+EOF
+done
