@@ -80,7 +80,7 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
                       std::vector<std::uint8_t> payload) override;
     void onLeft(ClientId id, const std::string& reason) override;
     // SessionControl::Frames
-    std::uint32_t framesDone() const override { return nextFrameToFinish_; }
+    std::uint32_t framesDone() const override { return nextFrameToFinish_ - options_.firstFrame; }
     std::uint32_t nextFrame() const override { return nextFrameToOpen_; }
     void stop() override;
     nlohmann::json errorJson() const override;
@@ -100,7 +100,8 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     void noteShown(std::uint32_t frame);
     void publishToView(std::uint32_t frame);
     bool framesLeft(std::uint32_t frame) const {
-        return !renderingEnded_ && (options_.frames == 0 || frame < std::uint32_t(options_.frames));
+        return !renderingEnded_ && (options_.frames == 0 ||
+                                    frame - options_.firstFrame < std::uint32_t(options_.frames));
     }
 
     void maybeStart();

@@ -4,6 +4,8 @@
 
 #include "ControlCommand.h"
 #include "ScenePick.h"
+#include "SettingsCommand.h"
+#include "scene/RenderSettingsJson.h"
 
 namespace igi {
 namespace {
@@ -90,6 +92,9 @@ void SessionControl::handle(const std::string& line, ControlServer::Reply reply,
                 nlohmann::json answer{{"ok", true},
                                       {"changes", request.changes.size()},
                                       {"from_frame", frames_.nextFrame()}};
+                // The settings now in force, as a scene file's "render" section would say.
+                if (changesSettings(request.changes))
+                    answer["settings"] = renderSettingsJson(timeline_.controlled().render);
                 if (!request.warnings.empty()) answer["warnings"] = request.warnings;
                 return reply(answer.dump());
             }
@@ -145,7 +150,7 @@ nlohmann::json SessionControl::statusJson() {
                              {"exposure", scene_.image.exposure},
                              {"width", scene_.image.width},
                              {"height", scene_.image.height},
-                             {"settings", settingsJson(scene_.render)}};
+                             {"settings", settingsJson(timeline_.controlled().render)}};
     status.update(frames_.errorJson());
     return status;
 }
@@ -182,6 +187,10 @@ nlohmann::json SessionControl::sceneJson() const {
     return {{"objects", objects},
             {"lights", lights},
             {"environment", environment},
+            // The render settings in force and those a settings command may change (the web
+            // view's settings panel).
+            {"settings", renderSettingsJson(state.render)},
+            {"live_settings", liveSettingKeys()},
             {"camera", cameraJson(state.camera)},
             {"exposure", scene_.image.exposure},
             {"width", scene_.image.width},
