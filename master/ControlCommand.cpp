@@ -106,7 +106,9 @@ ControlRequest parseControlCommand(const std::string& line, const Scene& scene,
     } else if (cmd == "environment") {
         request.changes.push_back(environmentChange(command, current));
     } else if (cmd == "settings") {
-        request.changes.push_back(settingsChange(command, current.render));
+        SettingsRequest settings = settingsRequest(command, current.render);
+        if (settings.change) request.changes.push_back(*settings.change);
+        request.targetError = settings.targetError;
     } else if (cmd == "snapshot") {
         command.checkKeys({"cmd", "path"});
         request.kind = ControlRequest::Kind::Snapshot;

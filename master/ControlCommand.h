@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@ struct ControlRequest {
     /// from then on (not a scene change: accumulation goes on).
     enum class Kind { Change, Status, Scene, Pick, Exposure, Snapshot, Stop } kind = Kind::Status;
     std::vector<SceneChange> changes;  ///< for Change
+    /// For Change (a settings command): a new target error, the master's (0: none).
+    std::optional<double> targetError;
     /// For Snapshot: where to write the image; empty: the master picks a new .exr name beside
     /// its outputs (what the web view's save button asks for).
     std::string path;

@@ -202,6 +202,19 @@ TEST(ControlCommand, SettingsChangeTheStatesRenderSettings) {
     EXPECT_EQ(c.settings, expected);
 }
 
+// The target error is the master's, not a render setting: no change (no new epoch) unless
+// settings come with it.
+TEST(ControlCommand, SettingsSetTheTargetErrorWithoutAChangeOfTheScene) {
+    const ControlRequest target = parse(R"({"cmd":"settings","target_error":0.01})");
+    EXPECT_EQ(target.kind, ControlRequest::Kind::Change);
+    EXPECT_TRUE(target.changes.empty());
+    EXPECT_EQ(target.targetError, 0.01);
+    const ControlRequest both = parse(R"({"cmd":"settings","target_error":0,"indirect_vpls":9})");
+    EXPECT_EQ(both.changes.size(), 1u);
+    EXPECT_EQ(both.targetError, 0.0);
+    EXPECT_FALSE(parse(R"({"cmd":"settings","indirect_vpls":9})").targetError);
+}
+
 TEST(ControlCommand, BadCommandsAreClearErrors) {
     struct Case {
         std::string line;
@@ -252,6 +265,7 @@ TEST(ControlCommand, BadCommandsAreClearErrors) {
         {R"({"cmd":"settings","interleave":[2,2]})", "/interleave",
          "'interleave' is fixed while the session runs"},
         {R"({"cmd":"settings"})", "", "the command changes nothing (give one of: "},
+        {R"({"cmd":"settings","target_error":-1})", "/target_error", "must be in [0, 100]"},
         {R"({"cmd":"settings","indirect_vpl":8})", "/indirect_vpl", "did you mean"},
     };
     for (const Case& c : cases) {

@@ -449,6 +449,22 @@ void Master::endRendering(const std::string& why) {
     stop();
 }
 
+void Master::setTargetError(double target) {
+    options_.targetError = target;
+    shownError_.setTarget(target);
+}
+
+void Master::resume(bool changed) {
+    if (!renderingEnded_ || ending_) return;
+    // Time up is up for good (idle time counts). A change restarts the accumulation, which the
+    // target judges anew; without one, a target the image shown meets is met still.
+    if (options_.timeLimitSeconds > 0 && renderSeconds() >= options_.timeLimitSeconds) return;
+    if (!changed && !shownError_.targetMet().empty()) return;
+    renderingEnded_ = false;
+    spdlog::info("rendering resumes at frame {}", nextFrameToOpen_);
+    dispatch();
+}
+
 nlohmann::json Master::errorJson() const {
     // From the image shown last (noteShown): the compositor may be adding the next frame now,
     // on the pool.

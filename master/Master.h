@@ -83,6 +83,8 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     std::uint32_t framesDone() const override { return nextFrameToFinish_ - options_.firstFrame; }
     std::uint32_t nextFrame() const override { return nextFrameToOpen_; }
     void stop() override;
+    void setTargetError(double target) override;
+    void resume(bool changed) override;
     nlohmann::json errorJson() const override;
 
     /// Why rendering should end now (--target-error met, --time-limit up), or empty.
@@ -147,7 +149,8 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     std::uint64_t ticks_ = 0;
     bool started_ = false;
     bool ending_ = false;
-    /// A live session reached its target error or time limit: no more frames are opened.
+    /// A live session reached its target error or time limit: no more frames are opened (until
+    /// a change, resume()).
     bool renderingEnded_ = false;
     ShownError shownError_{options_.targetError};  ///< of the image shown last
     int exitCode_ = 0;

@@ -88,6 +88,8 @@ void SessionControl::handle(const std::string& line, ControlServer::Reply reply,
             } catch (const std::exception& e) {
                 return error(e.what());
             }
+            if (request.targetError) frames_.setTargetError(*request.targetError);
+            frames_.resume(!request.changes.empty());
             {
                 nlohmann::json answer{{"ok", true},
                                       {"changes", request.changes.size()},
@@ -95,6 +97,7 @@ void SessionControl::handle(const std::string& line, ControlServer::Reply reply,
                 // The settings now in force, as a scene file's "render" section would say.
                 if (changesSettings(request.changes))
                     answer["settings"] = renderSettingsJson(timeline_.controlled().render);
+                if (request.targetError) answer["target_error"] = *request.targetError;
                 if (!request.warnings.empty()) answer["warnings"] = request.warnings;
                 return reply(answer.dump());
             }

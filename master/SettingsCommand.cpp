@@ -61,15 +61,22 @@ std::vector<std::string> liveSettingKeys() {
         for (const FixedSetting& f : fixedSettings()) fixed = fixed || key == f.key;
         if (!fixed) keys.push_back(key);
     }
-    keys.push_back("converge");  // sets the estimator's parts at once (not progressive_filter)
+    keys.push_back("converge");      // sets the estimator's parts at once (not progressive_filter)
+    keys.push_back("target_error");  // the master's, not a render setting (--target-error)
     return keys;
 }
 
-SettingsChange settingsChange(const JsonNode& command, const RenderSettings& current) {
+SettingsRequest settingsRequest(const JsonNode& command, const RenderSettings& current) {
     command.requireObject();
     nlohmann::json keys = command.value();
     keys.erase("cmd");
     if (keys.empty()) command.fail("the command changes nothing (give one of: " + liveList() + ")");
+    SettingsRequest request;
+    if (auto target = command.find("target_error")) {
+        request.targetError = target->number(NumberRange::closed(0, kMaxTargetError));
+        keys.erase("target_error");
+        if (keys.empty()) return request;
+    }
     RenderSettings next = current;
     // The scene file's reader: the same keys, checks and messages (naming the key and range).
     applyRenderSettingsJson(keys, next, command.file(), command.path());
@@ -80,7 +87,8 @@ SettingsChange settingsChange(const JsonNode& command, const RenderSettings& cur
         JsonNode(command.value(), command.file(), command.path() + "/" + given)
             .fail(fixedReason(f.key));
     }
-    return SettingsChange{next};
+    request.change = SettingsChange{next};
+    return request;
 }
 
 }  // namespace igi

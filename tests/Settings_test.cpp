@@ -7,6 +7,7 @@
 #include <fstream>
 #include <regex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -202,6 +203,67 @@ TEST(Settings, AClientJoiningAfterAChangeRendersWithTheSettingsInForce) {
                                     .command = {"indirect_vpls", "40", "caustic_photons", "100"},
                                     .after = {"--indirect-vpls", "40", "--caustic-photons", "100"},
                                     .joiner = true});
+}
+
+// The target error changes too (it is the master's: no new epoch). A live session idle at its
+// target renders again when the target is lowered, or when the settings change; then, at the
+// target again, it idles again.
+TEST(Settings, ALowerTargetOrNewSettingsResumeASessionIdleAtItsTarget) {
+    const fs::path dir = scratchDir("settings-target");
+    // A target the second frame meets.
+    OpenSession live(dir, {"--local-clients", "1", "--target-error", "1"});
+    ASSERT_TRUE(live.started()) << readFile(live.log);
+    const std::regex idle(R"(rendering ends; the session stays live, idle)");
+    ASSERT_FALSE(waitForLine(live.log, idle, live.master).empty()) << readFile(live.log);
+    auto ctl = [&](const std::vector<std::string>& args) {
+        return replyOf(runCtl(dir / "ctl.log", live.controlPort, args));
+    };
+    auto count = [&](const std::regex& line) {
+        const std::string text = readFile(live.log);
+        return std::distance(std::sregex_iterator(text.begin(), text.end(), line),
+                             std::sregex_iterator());
+    };
+    EXPECT_EQ(ctl({"status"}).value("rendering", ""), "idle");
+
+    // Lowered: rendering resumes, with the same scene (no new epoch).
+    const int epoch = ctl({"status"}).value("epoch", -1);
+    nlohmann::json reply = ctl({"settings", "target_error", "0.000001"});
+    ASSERT_TRUE(reply.value("ok", false)) << reply.dump();
+    EXPECT_EQ(reply.value("target_error", 0.0), 0.000001);
+    EXPECT_EQ(reply.value("changes", -1), 0) << reply.dump();
+    const std::regex resumes(R"(rendering resumes at frame)");
+    ASSERT_FALSE(waitForLine(live.log, resumes, live.master).empty()) << readFile(live.log);
+    ASSERT_TRUE(live.waitFrames(2)) << readFile(live.log);
+    nlohmann::json status = ctl({"status"});
+    EXPECT_EQ(status.value("rendering", ""), "running") << status.dump();
+    EXPECT_EQ(status.value("target_error", 0.0), 0.000001);
+    EXPECT_EQ(status.value("epoch", -2), epoch) << status.dump();
+
+    // Raised to what the image meets: idle again.
+    ASSERT_TRUE(ctl({"settings", "target_error", "1"}).value("ok", false));
+    for (int i = 0; i < 600 && count(idle) < 2; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    ASSERT_EQ(count(idle), 2) << readFile(live.log);
+
+    // New settings while idle: a new epoch, rendered, until the target is met again.
+    reply = ctl({"settings", "indirect_vpls", "40"});
+    ASSERT_TRUE(reply.value("ok", false)) << reply.dump();
+    for (int i = 0; i < 600 && count(idle) < 3; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    ASSERT_EQ(count(idle), 3) << readFile(live.log);
+    EXPECT_EQ(count(resumes), 2) << readFile(live.log);
+    status = ctl({"status"});
+    EXPECT_EQ(status.value("epoch", -2), epoch + 1) << status.dump();
+    EXPECT_EQ(status["settings"].value("indirect_vpls", 0), 40) << status.dump();
+
+    // Out of range: refused with the key and its range.
+    reply = ctl({"settings", "target_error", "-1"});
+    EXPECT_FALSE(reply.value("ok", true));
+    EXPECT_NE(reply.value("error", "").find("/target_error: must be in [0, 100], got -1"),
+              std::string::npos)
+        << reply.dump();
+    EXPECT_GT(live.stop(), 0);
+    fs::remove_all(dir);
 }
 
 // Out of range, unknown, or fixed for the session: refused with the key (and its range), and the
