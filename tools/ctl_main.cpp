@@ -117,8 +117,9 @@ std::string exchange(const igi::HostPort& master, const std::string& line) {
 nlohmann::json settingsCommand(const std::vector<std::string>& pairs) {
     if (pairs.empty()) throw CLI::ValidationError("settings", "expected KEY VALUE pairs");
     if (pairs.size() % 2 != 0)
-        throw CLI::ValidationError(
-            "settings", "expected KEY VALUE pairs, got " + std::to_string(pairs.size()) + " words");
+        throw CLI::ValidationError("settings",
+                                   "expected KEY VALUE pairs, got an odd number of words (" +
+                                       std::to_string(pairs.size()) + ")");
     nlohmann::json j{{"cmd", "settings"}};
     for (std::size_t i = 0; i < pairs.size(); i += 2) {
         nlohmann::json value = nlohmann::json::parse(pairs[i + 1], nullptr, false);
@@ -191,7 +192,9 @@ int main(int argc, char** argv) {
     // Every word after the subcommand is a key or a value: a negative value (-1) is not an
     // option (igi-master refuses it, naming the key and its range).
     settings->prefix_command();
-    settings->footer("KEY VALUE ...: a scene file's \"render\" keys and their values");
+    settings->footer(
+        "KEY VALUE ...: a scene file's \"render\" keys and their values, and target_error "
+        "(docs/ANIMATION.md, \"Render settings while it runs\")");
     auto* status =
         app.add_subcommand("status", "frames done, epoch, accumulated frames, clients, fps");
     bool table = false;
