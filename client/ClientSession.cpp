@@ -238,19 +238,22 @@ std::vector<std::shared_ptr<SceneVersion>> ClientSession::replayHistory(
     // The base epoch's state, then each epoch after it in turn, as the other clients built
     // them from their SceneUpdates: a GI mode that keeps lighting across epochs ends up with
     // the lighting they hold (docs/MODES.md). Without history this is the current epoch alone.
+    // The settings in force are the state's: the base's changes carry any `settings` command.
     SceneState state = SceneState::of(scene);
     applyChanges(state, data.changes);
     std::uint32_t e = epoch - std::uint32_t(data.history.size());
     std::vector<std::shared_ptr<SceneVersion>> versions;
     versions.push_back(
-        std::make_shared<SceneVersion>(e, geometry, state, scene.render, scene.image,
+        std::make_shared<SceneVersion>(e, geometry, state, state.render, scene.image,
                                        LightingContext{&scene, e, data.baseFirstFrame, nullptr}));
     for (const proto::EpochChanges& next : data.history) {
         applyChanges(state, next.changes);
         ++e;
-        auto previous = versions.back()->renderer.method().history(next.firstFrame);
+        auto previous = changesSettings(next.changes)
+                            ? nullptr
+                            : versions.back()->renderer.method().history(next.firstFrame);
         versions.push_back(std::make_shared<SceneVersion>(
-            e, geometry, state, scene.render, scene.image,
+            e, geometry, state, state.render, scene.image,
             LightingContext{&scene, e, next.firstFrame, std::move(previous)}));
         if (versions.size() > kKeptVersions) versions.erase(versions.begin());
     }
@@ -288,11 +291,14 @@ void ClientSession::onSceneUpdate(std::uint32_t epoch, std::uint32_t firstFrame,
         return refuse(std::string("a bad scene update: ") + e.what());
     }
     // Cheap: a top-level commit and the lights (and a batch of photons when streaming); the
-    // meshes are shared. Every update reaches every client, so each continues the same history.
+    // meshes are shared. Every update reaches every client, so each continues the same history;
+    // new settings start it afresh, as a session started with them at this frame would.
     const auto& previous = versions_.at(latestEpoch_)->renderer.method();
+    auto history = changesSettings(changes) ? nullptr : previous.history(firstFrame);
+    const RenderSettings settings = state.render;
     versions_[epoch] = std::make_shared<SceneVersion>(
-        epoch, *geometry_, std::move(state), scene_->render, scene_->image,
-        LightingContext{scene_.get(), epoch, firstFrame, previous.history(firstFrame)});
+        epoch, *geometry_, std::move(state), settings, scene_->image,
+        LightingContext{scene_.get(), epoch, firstFrame, std::move(history)});
     latestEpoch_ = epoch;
     // Tiles of old epochs keep their version alive; the map keeps only recent ones.
     while (versions_.size() > kKeptVersions) versions_.erase(versions_.begin());
@@ -304,7 +310,7 @@ void ClientSession::onTile(const proto::Header& header, const proto::TileAssign&
     if (version == versions_.end())
         return refuse("a tile of epoch " + std::to_string(header.epoch) +
                       ", which this client does not have");
-    const RenderSettings& s = scene_->render;
+    const RenderSettings& s = version->second->state.render;
     const Tile tile{a.x0, a.y0, a.width, a.height, a.kx, a.ky};
     if (a.kx >= s.interleaveX || a.ky >= s.interleaveY || a.x0 % s.interleaveX != 0 ||
         a.y0 % s.interleaveY != 0 || a.x0 + a.width > scene_->image.width ||

@@ -4,6 +4,7 @@
 
 #include "SceneNames.h"
 #include "SceneProperties.h"
+#include "SettingsCommand.h"
 #include "scene/JsonReader.h"
 #include "scene/SceneError.h"
 
@@ -88,9 +89,9 @@ ControlRequest parseControlCommand(const std::string& line, const Scene& scene,
     const nlohmann::json json = parseJsonText(line, kControlCommandFile);
     const JsonNode command(json, kControlCommandFile, "");
     command.requireObject();
-    const std::string cmd =
-        command.at("cmd").choice({"camera", "object", "light", "material", "environment", "status",
-                                  "scene", "pick", "exposure", "snapshot", "stop"});
+    const std::string cmd = command.at("cmd").choice({"camera", "object", "light", "material",
+                                                      "environment", "settings", "status", "scene",
+                                                      "pick", "exposure", "snapshot", "stop"});
 
     ControlRequest request;
     request.kind = ControlRequest::Kind::Change;
@@ -104,6 +105,10 @@ ControlRequest parseControlCommand(const std::string& line, const Scene& scene,
         request.changes = materialChanges(command, scene, current, request.warnings);
     } else if (cmd == "environment") {
         request.changes.push_back(environmentChange(command, current));
+    } else if (cmd == "settings") {
+        SettingsRequest settings = settingsRequest(command, current.render);
+        if (settings.change) request.changes.push_back(*settings.change);
+        request.targetError = settings.targetError;
     } else if (cmd == "snapshot") {
         command.checkKeys({"cmd", "path"});
         request.kind = ControlRequest::Kind::Snapshot;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,12 +12,14 @@ namespace igi {
 
 /// One command received on the master's control port (docs/ANIMATION.md, "Control commands").
 struct ControlRequest {
-    /// Change: moves the scene (a new epoch). Status, Scene and Pick only ask: the session's
-    /// progress; the scene's objects, lights and camera; what is under an image position.
-    /// Exposure sets the display exposure of the view and of PNG images written from then on
-    /// (not a scene change: accumulation goes on).
+    /// Change: moves the scene, or changes its render settings (a new epoch). Status, Scene and
+    /// Pick only ask: the session's progress; the scene's objects, lights and camera; what is under
+    /// an image position. Exposure sets the display exposure of the view and of PNG images written
+    /// from then on (not a scene change: accumulation goes on).
     enum class Kind { Change, Status, Scene, Pick, Exposure, Snapshot, Stop } kind = Kind::Status;
     std::vector<SceneChange> changes;  ///< for Change
+    /// For Change (a settings command): a new target error, the master's (0: none).
+    std::optional<double> targetError;
     /// For Snapshot: where to write the image; empty: the master picks a new .exr name beside
     /// its outputs (what the web view's save button asks for).
     std::string path;

@@ -192,6 +192,29 @@ TEST(ControlCommand, SceneQueryPickAndExposure) {
     EXPECT_EQ(exposure.exposure, -1.5f);
 }
 
+// A settings command changes the settings in force (the state's), at a new epoch.
+TEST(ControlCommand, SettingsChangeTheStatesRenderSettings) {
+    const SettingsChange c =
+        only<SettingsChange>(parse(R"({"cmd":"settings","indirect_vpls":64,"roulette":false})"));
+    RenderSettings expected = currentState().render;
+    expected.indirectVpls = 64;
+    expected.roulette = false;
+    EXPECT_EQ(c.settings, expected);
+}
+
+// The target error is the master's, not a render setting: no change (no new epoch) unless
+// settings come with it.
+TEST(ControlCommand, SettingsSetTheTargetErrorWithoutAChangeOfTheScene) {
+    const ControlRequest target = parse(R"({"cmd":"settings","target_error":0.01})");
+    EXPECT_EQ(target.kind, ControlRequest::Kind::Change);
+    EXPECT_TRUE(target.changes.empty());
+    EXPECT_EQ(target.targetError, 0.01);
+    const ControlRequest both = parse(R"({"cmd":"settings","target_error":0,"indirect_vpls":9})");
+    EXPECT_EQ(both.changes.size(), 1u);
+    EXPECT_EQ(both.targetError, 0.0);
+    EXPECT_FALSE(parse(R"({"cmd":"settings","indirect_vpls":9})").targetError);
+}
+
 TEST(ControlCommand, BadCommandsAreClearErrors) {
     struct Case {
         std::string line;
@@ -201,7 +224,7 @@ TEST(ControlCommand, BadCommandsAreClearErrors) {
     const Case cases[] = {
         {R"({"cmd":"explode"})", "/cmd",
          "unknown value 'explode' (expected one of: camera, object, light, material, "
-         "environment, status, scene, pick, exposure, snapshot, stop)"},
+         "environment, settings, status, scene, pick, exposure, snapshot, stop)"},
         {R"({"command":"status"})", "", "missing required key 'cmd'"},
         {R"([1,2])", "", "expected an object, got array"},
         {R"({"cmd":"camera","positon":[0,0,1]})", "/positon",
@@ -235,6 +258,15 @@ TEST(ControlCommand, BadCommandsAreClearErrors) {
         {R"({"cmd":"scene","all":true})", "/all", "unknown key"},
         {R"({"cmd":"snapshot","path":""})", "/path", "the path is empty"},
         {R"({"cmd":"status","verbose":true})", "/verbose", "unknown key"},
+        {R"({"cmd":"settings","indirect_vpls":200000})", "/indirect_vpls",
+         "must be in [0, 100000], got 200000"},
+        {R"({"cmd":"settings","light_sampling":"best"})", "/light_sampling",
+         "unknown value 'best' (expected one of: auto, power, tree)"},
+        {R"({"cmd":"settings","interleave":[2,2]})", "/interleave",
+         "'interleave' is fixed while the session runs"},
+        {R"({"cmd":"settings"})", "", "the command changes nothing (give one of: "},
+        {R"({"cmd":"settings","target_error":-1})", "/target_error", "must be in [0, 100]"},
+        {R"({"cmd":"settings","indirect_vpl":8})", "/indirect_vpl", "did you mean"},
     };
     for (const Case& c : cases) {
         const SceneError e = errorOf(c.line);

@@ -45,7 +45,10 @@ Master::Master(MasterOptions options)
       tick_(io_),
       pool_(options_.threads > 0 ? options_.threads : ThreadPool::defaultThreads()),
       signals_(io_, SIGINT, SIGTERM),
+      nextFrameToOpen_(options_.firstFrame),
+      nextFrameToFinish_(options_.firstFrame),
       created_(Clock::now()) {
+    compositedUpTo_.store(options_.firstFrame);
     roster_ = std::make_unique<ClientRoster>(io_, options_, stats_,
                                              static_cast<ClientRoster::Events&>(*this), created_);
 }
@@ -64,8 +67,9 @@ void Master::loadScene() {
         animation = std::make_unique<Animation>(Animation::load(options_.animation, scene_));
         fitFramesToAnimation(*animation);
     }
-    timeline_ = std::make_unique<SceneTimeline>(SceneState::of(scene_), std::move(animation),
-                                                joinHistoryDepth(scene_.render));
+    timeline_ =
+        std::make_unique<SceneTimeline>(SceneState::of(scene_), std::move(animation),
+                                        joinHistoryDepth(scene_.render), options_.firstFrame);
 
     const RenderSettings& s = scene_.render;
     auto layout = makeTiles(scene_.image.width, scene_.image.height, s.interleaveX, s.interleaveY,
@@ -107,8 +111,9 @@ void Master::onWelcomed(ConnectedClient& c) {
     sceneData_.baseFirstFrame = join.baseFirstFrame;
     sceneData_.history.clear();
     for (auto& e : join.history) sceneData_.history.push_back({e.firstFrame, std::move(e.changes)});
-    if ((scene_.render.gi == GiMode::Spt || scene_.render.gi == GiMode::PhotonMap) &&
-        !timeline_->historyComplete())
+    // The GI mode in force, which a settings command may have changed.
+    const GiMode gi = timeline_->state().render.gi;
+    if ((gi == GiMode::Spt || gi == GiMode::PhotonMap) && !timeline_->historyComplete())
         spdlog::warn(
             "client {} joins at epoch {}, past the {} epochs of history a joiner replays: its "
             "photon groups start from epoch {}, so its tiles may be lit differently from the "
@@ -333,8 +338,8 @@ void Master::onComposited(std::uint32_t f, double seconds) {
                     ? fmt::format(" ({} frames since the last line)", framePace_.skippedBefore())
                     : "");
     if (progress_)
-        progress_->update(int(f + 1), stats_.recentFps(), roster_->readyCount(),
-                          shownError_.describe(stats_.recentFps()));
+        progress_->update(int(f + 1 - options_.firstFrame), stats_.recentFps(),
+                          roster_->readyCount(), shownError_.describe(stats_.recentFps()));
     outputs_->writeFrameImages(f);
     publishToView(f);
     stats_.closeFrame(f);
@@ -343,7 +348,7 @@ void Master::onComposited(std::uint32_t f, double seconds) {
     spareBuffers_.push_back(std::move(frames_.at(f)->buffer));
     frames_.erase(f);
     ++nextFrameToFinish_;
-    if (options_.frames > 0 && nextFrameToFinish_ >= std::uint32_t(options_.frames)) {
+    if (options_.frames > 0 && framesDone() >= std::uint32_t(options_.frames)) {
         stop();
         return;
     }
@@ -393,7 +398,7 @@ void Master::scheduleTick() {
         if (started_ && secondsSince(lastClientSeen_) > options_.waitSeconds) {
             spdlog::error(
                 "every client left and none came back within {:.0f} s; {} of {} frames done",
-                options_.waitSeconds, nextFrameToFinish_, options_.frames);
+                options_.waitSeconds, framesDone(), options_.frames);
             endSession(4);
             return;
         }
@@ -428,7 +433,7 @@ std::string Master::limitReached() const {
     if (std::string why = shownError_.targetMet(); !why.empty()) return why;
     if (options_.timeLimitSeconds > 0 && renderSeconds() >= options_.timeLimitSeconds)
         return fmt::format("--time-limit {:g} s reached after {} frames", options_.timeLimitSeconds,
-                           nextFrameToFinish_);
+                           framesDone());
     return {};
 }
 
@@ -442,6 +447,22 @@ void Master::endRendering(const std::string& why) {
     }
     spdlog::info("{}: ending the session", why);
     stop();
+}
+
+void Master::setTargetError(double target) {
+    options_.targetError = target;
+    shownError_.setTarget(target);
+}
+
+void Master::resume(bool changed) {
+    if (!renderingEnded_ || ending_) return;
+    // Time up is up for good (idle time counts). A change restarts the accumulation, which the
+    // target judges anew; without one, a target the image shown meets is met still.
+    if (options_.timeLimitSeconds > 0 && renderSeconds() >= options_.timeLimitSeconds) return;
+    if (!changed && !shownError_.targetMet().empty()) return;
+    renderingEnded_ = false;
+    spdlog::info("rendering resumes at frame {}", nextFrameToOpen_);
+    dispatch();
 }
 
 nlohmann::json Master::errorJson() const {
@@ -508,7 +529,7 @@ int Master::run() {
         });
     signals_.async_wait([this](const boost::system::error_code& ec, int signal) {
         if (ec) return;
-        spdlog::warn("signal {}: ending the session after {} frames", signal, nextFrameToFinish_);
+        spdlog::warn("signal {}: ending the session after {} frames", signal, framesDone());
         stop();
     });
     if (!options_.statsJson.empty()) {
@@ -559,7 +580,7 @@ void Master::startLocalClients() {
 void Master::writeStatistics() {
     const double start = std::chrono::duration<double>(renderStart_ - created_).count();
     const double end = std::chrono::duration<double>(renderEnd_ - created_).count();
-    spdlog::info("{} frames in {:.2f} s: {:.2f} fps", nextFrameToFinish_, end - start,
+    spdlog::info("{} frames in {:.2f} s: {:.2f} fps", framesDone(), end - start,
                  stats_.fps(end - start));
     if (!options_.statsJson.empty())
         stats_.writeJson(options_.statsJson, sessionJson(options_, scene_), start, end);

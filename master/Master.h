@@ -80,9 +80,11 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
                       std::vector<std::uint8_t> payload) override;
     void onLeft(ClientId id, const std::string& reason) override;
     // SessionControl::Frames
-    std::uint32_t framesDone() const override { return nextFrameToFinish_; }
+    std::uint32_t framesDone() const override { return nextFrameToFinish_ - options_.firstFrame; }
     std::uint32_t nextFrame() const override { return nextFrameToOpen_; }
     void stop() override;
+    void setTargetError(double target) override;
+    void resume(bool changed) override;
     nlohmann::json errorJson() const override;
 
     /// Why rendering should end now (--target-error met, --time-limit up), or empty.
@@ -100,7 +102,8 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     void noteShown(std::uint32_t frame);
     void publishToView(std::uint32_t frame);
     bool framesLeft(std::uint32_t frame) const {
-        return !renderingEnded_ && (options_.frames == 0 || frame < std::uint32_t(options_.frames));
+        return !renderingEnded_ && (options_.frames == 0 ||
+                                    frame - options_.firstFrame < std::uint32_t(options_.frames));
     }
 
     void maybeStart();
@@ -146,7 +149,8 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     std::uint64_t ticks_ = 0;
     bool started_ = false;
     bool ending_ = false;
-    /// A live session reached its target error or time limit: no more frames are opened.
+    /// A live session reached its target error or time limit: no more frames are opened (until
+    /// a change, resume()).
     bool renderingEnded_ = false;
     ShownError shownError_{options_.targetError};  ///< of the image shown last
     int exitCode_ = 0;

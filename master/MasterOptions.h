@@ -17,6 +17,10 @@ struct MasterOptions {
     /// after `frames`, whichever comes first.
     double targetError = 0;
     double timeLimitSeconds = 0;
+    /// The number of the session's first frame: a session started at frame F renders frames
+    /// F, F + 1, ... as a session that reached F would (their random numbers depend on the
+    /// frame's number). What a settings change at frame F is compared with (docs/ANIMATION.md).
+    std::uint32_t firstFrame = 0;
     /// --frames was given; without it, an --animation runs to its last keyframe.
     bool framesGiven = false;
     std::filesystem::path animation;  ///< keyframes applied frame by frame (docs/ANIMATION.md)

@@ -27,13 +27,19 @@ std::uint32_t joinHistoryDepth(const RenderSettings& s) {
 }
 
 SceneTimeline::SceneTimeline(SceneState loaded, std::unique_ptr<Animation> animation,
-                             std::uint32_t historyDepth)
+                             std::uint32_t historyDepth, std::uint32_t firstFrame)
     : loaded_(loaded),
       controlled_(loaded),
       state_(loaded),
       historyDepth_(historyDepth),
       base_(std::move(loaded)),
-      animation_(std::move(animation)) {}
+      baseFirstFrame_(firstFrame),
+      animation_(std::move(animation)) {
+    // A session started at a later frame starts in the state its animation gives that frame,
+    // as epoch 0: as a session started there with that scene would (no epoch of the frames it
+    // skipped, no lighting kept from them).
+    if (animation_ && firstFrame > 0) state_ = base_ = animation_->stateAt(firstFrame, loaded_);
+}
 
 void SceneTimeline::control(const std::vector<SceneChange>& changes) {
     applyChanges(controlled_, changes);
@@ -47,17 +53,37 @@ SceneTimeline::FrameStart SceneTimeline::beginFrame(std::uint32_t frame) {
     if (!start.changes.empty()) {
         ++epoch_;
         state_ = wanted;
-        history_.push_back({frame, start.changes});
-        if (history_.size() > historyDepth_) {
-            applyChanges(base_, history_.front().changes);
-            baseFirstFrame_ = history_.front().firstFrame;
-            ++baseEpoch_;
-            history_.pop_front();
-        }
+        if (changesSettings(start.changes))
+            restartHistory(frame);
+        else
+            keepInHistory(frame, start.changes);
     }
     start.epoch = epoch_;
     frameEpochs_[frame] = epoch_;
     return start;
+}
+
+void SceneTimeline::keepInHistory(std::uint32_t frame, const std::vector<SceneChange>& changes) {
+    history_.push_back({frame, changes});
+    if (history_.size() > historyDepth_) {
+        applyChanges(base_, history_.front().changes);
+        baseFirstFrame_ = history_.front().firstFrame;
+        ++baseEpoch_;
+        baseFresh_ = false;
+        history_.pop_front();
+    }
+}
+
+void SceneTimeline::restartHistory(std::uint32_t frame) {
+    // Clients start the lighting afresh at new settings (a session started with them here
+    // would have no past): a joiner needs nothing before this epoch. The new settings may keep
+    // more or less of what follows.
+    base_ = state_;
+    baseEpoch_ = epoch_;
+    baseFirstFrame_ = frame;
+    baseFresh_ = true;
+    history_.clear();
+    historyDepth_ = joinHistoryDepth(state_.render);
 }
 
 SceneTimeline::Join SceneTimeline::join() const {

@@ -24,8 +24,10 @@ class SceneTimeline {
   public:
     /// `historyDepth`: how many of the latest epochs' changes to keep for joining clients (GI
     /// modes that keep lighting across epochs replay them, docs/MODES.md).
+    /// `firstFrame`: the session's first frame (MasterOptions::firstFrame), where epoch 0
+    /// begins; past 0, epoch 0 is the animation's state at that frame.
     SceneTimeline(SceneState loaded, std::unique_ptr<Animation> animation,
-                  std::uint32_t historyDepth = 0);
+                  std::uint32_t historyDepth = 0, std::uint32_t firstFrame = 0);
 
     /// Changes from a control command; they show from the next frame that begins. Throws
     /// std::invalid_argument (and changes nothing) if an index is out of range.
@@ -63,16 +65,25 @@ class SceneTimeline {
         std::vector<Epoch> history;
     };
     Join join() const;
-    /// Whether the history kept reaches back to the loaded scene (epoch 0).
-    bool historyComplete() const { return baseEpoch_ == 0; }
+    /// Whether the history kept reaches back to where the lighting started: the loaded scene
+    /// (epoch 0) or the last change of the render settings, from which every client starts
+    /// afresh.
+    bool historyComplete() const { return baseFresh_; }
 
   private:
+    /// An epoch that continues the lighting of the one before: kept for joiners, as deep as
+    /// the GI mode needs.
+    void keepInHistory(std::uint32_t frame, const std::vector<SceneChange>& changes);
+    /// An epoch of new render settings, begun at `frame`: the base of every join from now on.
+    void restartHistory(std::uint32_t frame);
+
     SceneState loaded_;
     SceneState controlled_;  ///< loaded + every control change so far
     SceneState state_;       ///< the state of the current epoch
     std::uint32_t historyDepth_;
     SceneState base_;  ///< the state of the oldest epoch whose successors are kept
     std::uint32_t baseEpoch_ = 0, baseFirstFrame_ = 0;
+    bool baseFresh_ = true;      ///< the base is epoch 0 or a settings change
     std::deque<Epoch> history_;  ///< the epochs after the base, oldest first
     std::unique_ptr<Animation> animation_;
     std::uint32_t epoch_ = 0;

@@ -37,6 +37,44 @@ TEST(SceneTimeline, AJoinerGetsTheChangedEnvironment) {
     EXPECT_EQ(joined, timeline.state());
 }
 
+// New settings start the lighting afresh on every client (as a session started with them
+// would): a joiner needs nothing from before them, whatever the depth; with the settings in
+// force, from the base on.
+TEST(SceneTimeline, ASettingsChangeIsTheBaseOfEveryLaterJoin) {
+    SceneState loaded = twoObjects();
+    loaded.render.gi = GiMode::Spt;
+    SceneTimeline timeline(loaded, nullptr, proto::kMaxHistoryEpochs);
+    timeline.beginFrame(0);
+    timeline.control(moveTo(0, 1.0f));
+    timeline.beginFrame(1);  // epoch 1
+    EXPECT_EQ(timeline.join().history.size(), 1u);
+    RenderSettings more = loaded.render;
+    more.sptBudget = 12;
+    timeline.control({SettingsChange{more}});
+    timeline.beginFrame(2);  // epoch 2: the new settings
+    timeline.control(moveTo(1, 2.0f));
+    timeline.beginFrame(3);  // epoch 3 continues epoch 2's lighting
+    ASSERT_EQ(timeline.epoch(), 3u);
+    const SceneTimeline::Join join = timeline.join();
+    EXPECT_EQ(join.baseFirstFrame, 2u);
+    ASSERT_EQ(join.history.size(), 1u);
+    EXPECT_EQ(join.history[0].firstFrame, 3u);
+    EXPECT_TRUE(timeline.historyComplete());
+    SceneState state = loaded;
+    applyChanges(state, join.changes);
+    EXPECT_EQ(state.render, more);
+    EXPECT_EQ(state.transforms[0].translate.x, 1.0f);
+    applyChanges(state, join.history[0].changes);
+    EXPECT_EQ(state, timeline.state());
+}
+
+// A session started at frame F (--first-frame) begins its epoch 0 there.
+TEST(SceneTimeline, TheFirstEpochBeginsAtTheSessionsFirstFrame) {
+    SceneTimeline timeline(twoObjects(), nullptr, 8, 40);
+    timeline.beginFrame(40);
+    EXPECT_EQ(timeline.join().baseFirstFrame, 40u);
+}
+
 // A joiner gets the state of the base epoch and the epochs after it, at most the depth: applying
 // them in order gives the current state, and the frames are those the epochs began at.
 TEST(SceneTimeline, AJoinerGetsTheLatestEpochsAndTheStateBeforeThem) {

@@ -4,6 +4,8 @@
 
 #include "ControlCommand.h"
 #include "ScenePick.h"
+#include "SettingsCommand.h"
+#include "scene/RenderSettingsJson.h"
 
 namespace igi {
 namespace {
@@ -86,10 +88,16 @@ void SessionControl::handle(const std::string& line, ControlServer::Reply reply,
             } catch (const std::exception& e) {
                 return error(e.what());
             }
+            if (request.targetError) frames_.setTargetError(*request.targetError);
+            frames_.resume(!request.changes.empty());
             {
                 nlohmann::json answer{{"ok", true},
                                       {"changes", request.changes.size()},
                                       {"from_frame", frames_.nextFrame()}};
+                // The settings now in force, as a scene file's "render" section would say.
+                if (changesSettings(request.changes))
+                    answer["settings"] = renderSettingsJson(timeline_.controlled().render);
+                if (request.targetError) answer["target_error"] = *request.targetError;
                 if (!request.warnings.empty()) answer["warnings"] = request.warnings;
                 return reply(answer.dump());
             }
@@ -145,7 +153,7 @@ nlohmann::json SessionControl::statusJson() {
                              {"exposure", scene_.image.exposure},
                              {"width", scene_.image.width},
                              {"height", scene_.image.height},
-                             {"settings", settingsJson(scene_.render)}};
+                             {"settings", settingsJson(timeline_.controlled().render)}};
     status.update(frames_.errorJson());
     return status;
 }
@@ -182,6 +190,10 @@ nlohmann::json SessionControl::sceneJson() const {
     return {{"objects", objects},
             {"lights", lights},
             {"environment", environment},
+            // The render settings in force and those a settings command may change (the web
+            // view's settings panel).
+            {"settings", renderSettingsJson(state.render)},
+            {"live_settings", liveSettingKeys()},
             {"camera", cameraJson(state.camera)},
             {"exposure", scene_.image.exposure},
             {"width", scene_.image.width},

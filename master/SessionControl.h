@@ -32,6 +32,12 @@ class SessionControl {
         virtual std::uint32_t nextFrame() const = 0;
         /// Ends the session after the frames done (the command has been answered).
         virtual void stop() = 0;
+        /// A settings command's new target error (0: none).
+        virtual void setTargetError(double target) = 0;
+        /// A command changed the scene or its settings (`changed`), or the target: a live
+        /// session idle at its target renders again, unless the image shown meets the target
+        /// and nothing changed, or its time limit is up.
+        virtual void resume(bool changed) = 0;
         /// The error estimate and the limits: merged into the status (Master::errorJson).
         virtual nlohmann::json errorJson() const = 0;
     };

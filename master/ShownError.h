@@ -20,6 +20,8 @@ class ShownError {
   public:
     /// `targetError`: --target-error (0: none).
     explicit ShownError(double targetError) : target_(targetError) {}
+    /// A new target (a settings command's; 0: none), for the images shown from now on.
+    void setTarget(double targetError) { target_ = targetError; }
 
     /// The image of `accumulated` frames was shown: takes the compositor's estimate for the
     /// image and per tile region of `layout`, and writes it and the forecast into `stats`.

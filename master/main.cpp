@@ -106,6 +106,12 @@ int main(int argc, char** argv) {
                        "default 1, or an --animation's length)")
             ->check(wholeNumber())
             ->check(CLI::Range(0, 1 << 24));
+    app.add_option("--first-frame", o.firstFrame,
+                   "number the frames from this one: they render as the frames of a session that "
+                   "reached it (a settings change there renders as a session started with the new "
+                   "settings there)")
+        ->check(wholeNumber())
+        ->check(CLI::Range(0, 1 << 30));
     app.add_option("--target-error", o.targetError,
                    "stop once the image's estimated relMSE (docs/ERROR_ESTIMATE.md) is at or "
                    "below this, e.g. 0.001")

@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "SceneCodec.h"
+
 namespace igi::proto {
 namespace {
 
@@ -24,7 +26,7 @@ static_assert(sizeof(Material) == sizeof(std::string) + 256,
               "Material changed: update ChangeCodec.cpp");
 // Not carried: the environment's map (texture), the scene's file.
 static_assert(sizeof(Environment) == 20, "Environment changed: update ChangeCodec.cpp");
-static_assert(std::variant_size_v<SceneChange> == 6,
+static_assert(std::variant_size_v<SceneChange> == 7,
               "a new kind of SceneChange needs a tag in ChangeCodec.cpp");
 
 // ---- writing ----
@@ -95,6 +97,12 @@ void write(ByteWriter& out, const EnvironmentChange& c) {
     writeTag(out, ChangeTag::Environment);
     writeVec3(out, c.value.radiance);
     out.f32(c.value.rotateDeg);
+}
+
+// Every setting, as a SceneData carries them: the receiver's checks are the same.
+void write(ByteWriter& out, const SettingsChange& c) {
+    writeTag(out, ChangeTag::Settings);
+    writeRenderSettings(out, c.settings);
 }
 
 // ---- reading ----
@@ -307,9 +315,11 @@ SceneChange readSceneChange(ByteReader& in, std::uint32_t index) {
             ChangeFields f(in, index, "environment");
             return readEnvironmentChange(f);
         }
+        case ChangeTag::Settings:
+            return SettingsChange{readRenderSettings(in)};
     }
     in.fail("change " + std::to_string(index) + ": unknown tag " + std::to_string(tag) +
-            ", expected 0 .. 5");
+            ", expected 0 .. 6");
 }
 
 void writeSceneChanges(ByteWriter& out, const std::vector<SceneChange>& changes) {

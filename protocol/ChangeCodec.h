@@ -24,6 +24,7 @@ enum class ChangeTag : std::uint8_t {
     QuadLight = 3,
     Material = 4,
     Environment = 5,
+    Settings = 6,
 };
 
 /// One change: a u8 tag, then its fields. Names and the material's texture are not sent: a

@@ -109,7 +109,7 @@ std::string errorWithByte(std::size_t i, std::size_t offset, std::uint8_t value)
 
 // Indices of the kinds in sampleChanges().
 constexpr std::size_t kCamera = 0, kTransform = 1, kPoint = 2, kQuad = 3, kMaterial = 4,
-                      kEnvironment = 6;
+                      kEnvironment = 6, kSettings = 7;
 
 template <typename T>
 T& as(std::vector<SceneChange>& changes, std::size_t i) {
@@ -120,7 +120,7 @@ T& as(std::vector<SceneChange>& changes, std::size_t i) {
 
 TEST(ChangeCodec, EveryKindRoundTripsWithEveryField) {
     const auto changes = sampleChanges();
-    ASSERT_EQ(changes.size(), 7u);
+    ASSERT_EQ(changes.size(), 8u);
     for (std::size_t i = 0; i < changes.size(); ++i) {
         SCOPED_TRACE("change " + std::to_string(i));
         EXPECT_TRUE(decodeChange(encodeChange(changes[i])) == changes[i]);
@@ -242,7 +242,29 @@ TEST(ChangeCodec, SizesOfEveryKindAreAsDocumented) {
     EXPECT_EQ(encodeChange(QuadLightChange{}).size(), 54u);
     EXPECT_EQ(encodeChange(MaterialChange{}).size(), 71u);
     EXPECT_EQ(encodeChange(EnvironmentChange{}).size(), 17u);
+    EXPECT_EQ(encodeChange(SettingsChange{}).size(), 164u);
     EXPECT_EQ(kMinChangeBytes, 17u);
+}
+
+// A settings change is the tag, then the settings exactly as a SceneData carries them.
+TEST(ChangeCodec, SettingsLayoutIsTheSceneDatasSettings) {
+    const SettingsChange c = std::get<SettingsChange>(sampleChanges()[kSettings]);
+    std::vector<std::uint8_t> expected = {6};
+    ByteWriter out(expected);
+    writeRenderSettings(out, c.settings);
+    EXPECT_EQ(encodeChange(c), expected);
+}
+
+// And checked as a SceneData's are: a client never renders with settings a master would refuse.
+TEST(ChangeCodec, SettingsOutOfRangeAreRefusedNamingTheField) {
+    EXPECT_CONTAINS(
+        errorAfter([](auto& c) { as<SettingsChange>(c, kSettings).settings.interleaveX = 0; }),
+        "interleaveX");
+    EXPECT_CONTAINS(errorAfter([](auto& c) {
+                        as<SettingsChange>(c, kSettings).settings.progressiveAlpha = NAN;
+                    }),
+                    "progressiveAlpha");
+    EXPECT_EQ(errorAfter([](auto&) {}), "(no error)");
 }
 
 TEST(ChangeCodec, EnvironmentLayoutIsAsDocumented) {
@@ -336,7 +358,7 @@ TEST(ChangeCodec, TrailingBytesThrow) {
 // ---- validation: every refusal names the change and the field ----
 
 TEST(ChangeCodec, UnknownTagIsRefusedWithItsIndex) {
-    EXPECT_EQ(errorWithByte(3, 0, 6), "SceneUpdate: change 3: unknown tag 6, expected 0 .. 5");
+    EXPECT_EQ(errorWithByte(3, 0, 7), "SceneUpdate: change 3: unknown tag 7, expected 0 .. 6");
     EXPECT_CONTAINS(errorWithByte(0, 0, 255), "change 0: unknown tag 255");
     EXPECT_EQ(errorWithByte(3, 0, 3), "(no error)");  // the byte patched back to itself
 }

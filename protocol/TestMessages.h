@@ -78,7 +78,16 @@ inline std::vector<SceneChange> sampleChanges() {
     environment.value.radiance = {2.5f, 0.0f, 1e-3f};
     environment.value.rotateDeg = -400.0f;
 
-    return {camera, transform, point, quad, material, mirror, environment};
+    // The render settings: a settings command's (every field; the defaults, some changed).
+    SettingsChange settings;
+    settings.settings.indirectVpls = 64;
+    settings.settings.directSamples = 9;
+    settings.settings.lightSampling = LightSampling::Tree;
+    settings.settings.clampCompensation = ClampCompensation::Shrink;
+    settings.settings.progressiveAlpha = 0.5f;
+    settings.settings.seed = 0xFEDCBA9876543210ull;
+
+    return {camera, transform, point, quad, material, mirror, environment, settings};
 }
 
 inline SceneUpdate sampleSceneUpdate() {

@@ -112,6 +112,22 @@ std::string exchange(const igi::HostPort& master, const std::string& line) {
     return reply.substr(0, reply.find('\n'));
 }
 
+// `settings KEY VALUE ...`: the pairs as a command's keys. A value that reads as JSON (64,
+// 0.5, true, [2, 2]) is that; any other word is a string (tree, kollig-keller).
+nlohmann::json settingsCommand(const std::vector<std::string>& pairs) {
+    if (pairs.empty()) throw CLI::ValidationError("settings", "expected KEY VALUE pairs");
+    if (pairs.size() % 2 != 0)
+        throw CLI::ValidationError("settings",
+                                   "expected KEY VALUE pairs, got an odd number of words (" +
+                                       std::to_string(pairs.size()) + ")");
+    nlohmann::json j{{"cmd", "settings"}};
+    for (std::size_t i = 0; i < pairs.size(); i += 2) {
+        nlohmann::json value = nlohmann::json::parse(pairs[i + 1], nullptr, false);
+        j[pairs[i]] = value.is_discarded() ? nlohmann::json(pairs[i + 1]) : value;
+    }
+    return j;
+}
+
 // `status --table`: what scripts/cluster.sh reads with `read`, one record per line.
 void printTable(const nlohmann::json& status) {
     std::cout << "session " << status.value("frames_done", 0) << ' '
@@ -169,6 +185,16 @@ int main(int argc, char** argv) {
                          {{"--scale", "scale", 3},
                           {"--radiance", "radiance", 3},
                           {"--rotate-deg", "rotate_deg", 1}});
+    auto* settings = app.add_subcommand(
+        "settings",
+        "changes render settings at the next frame, as a scene file's \"render\" keys: "
+        "settings indirect_vpls 64 light_sampling tree (the reply lists the settings in force)");
+    // Every word after the subcommand is a key or a value: a negative value (-1) is not an
+    // option (igi-master refuses it, naming the key and its range).
+    settings->prefix_command();
+    settings->footer(
+        "KEY VALUE ...: a scene file's \"render\" keys and their values, and target_error "
+        "(docs/ANIMATION.md, \"Render settings while it runs\")");
     auto* status =
         app.add_subcommand("status", "frames done, epoch, accumulated frames, clients, fps");
     bool table = false;
@@ -204,6 +230,13 @@ int main(int argc, char** argv) {
     if (*material->app) command = toJson(*material, "material");
     if (*environment->app) command = toJson(*environment, "environment");
     if (*status) command = {{"cmd", "status"}};
+    if (*settings) {
+        try {
+            command = settingsCommand(settings->remaining());
+        } catch (const CLI::ValidationError& e) {
+            return app.exit(e);
+        }
+    }
     if (*scene) command = {{"cmd", "scene"}};
     if (*pick) command = {{"cmd", "pick"}, {"x", pickX}, {"y", pickY}};
     if (*exposure) command = {{"cmd", "exposure"}, {"stops", stops}};

@@ -33,6 +33,8 @@ void apply(SceneState& s, const SceneChange& change) {
                 QuadLight value = c.value;
                 value.name = s.quadLights[c.light].name;
                 s.quadLights[c.light] = value;
+            } else if constexpr (std::is_same_v<C, SettingsChange>) {
+                s.render = c.settings;
             } else if constexpr (std::is_same_v<C, EnvironmentChange>) {
                 Environment value = c.value;
                 value.texture = s.environment.texture;  // the map is the scene's file
@@ -77,8 +79,15 @@ void applyChanges(SceneState& state, const std::vector<SceneChange>& changes) {
     state = std::move(next);
 }
 
+bool changesSettings(const std::vector<SceneChange>& changes) {
+    for (const SceneChange& c : changes)
+        if (std::holds_alternative<SettingsChange>(c)) return true;
+    return false;
+}
+
 std::vector<SceneChange> diffStates(const SceneState& from, const SceneState& to) {
     std::vector<SceneChange> changes;
+    if (!(from.render == to.render)) changes.push_back(SettingsChange{to.render});
     if (!(from.camera == to.camera)) changes.push_back(CameraChange{to.camera});
     for (std::uint32_t i = 0; i < to.transforms.size() && i < from.transforms.size(); ++i)
         if (!(from.transforms[i] == to.transforms[i]))

@@ -43,8 +43,20 @@ struct EnvironmentChange {
     bool operator==(const EnvironmentChange&) const = default;
 };
 
-using SceneChange = std::variant<CameraChange, TransformChange, PunctualLightChange,
-                                 QuadLightChange, MaterialChange, EnvironmentChange>;
+/// Every render setting at once (a `settings` control command): the epoch it makes renders as
+/// a session started with them at its first frame would, so a method that keeps lighting across
+/// epochs starts afresh there.
+struct SettingsChange {
+    RenderSettings settings;
+    bool operator==(const SettingsChange&) const = default;
+};
+
+using SceneChange =
+    std::variant<CameraChange, TransformChange, PunctualLightChange, QuadLightChange,
+                 MaterialChange, EnvironmentChange, SettingsChange>;
+
+/// Whether `changes` change the render settings (the epoch they make starts lighting afresh).
+bool changesSettings(const std::vector<SceneChange>& changes);
 
 /// Applies changes in order. Throws std::invalid_argument naming the first change whose index
 /// is out of range (the state is then unchanged).

@@ -32,6 +32,22 @@ TEST(SceneChange, DiffThenApplyReproducesTheTarget) {
     EXPECT_TRUE(diffStates(to, to).empty());
 }
 
+// The render settings are part of the state: a diff carries them whole, once.
+TEST(SceneChange, SettingsAreOneChangeOfTheirOwn) {
+    const SceneState from = twoObjects();
+    SceneState to = from;
+    to.render.indirectVpls = 64;
+    to.render.roulette = false;
+    const auto changes = diffStates(from, to);
+    ASSERT_EQ(changes.size(), 1u);
+    EXPECT_TRUE(changesSettings(changes));
+    EXPECT_FALSE(changesSettings(diffStates(from, twoObjects())));
+    SceneState s = from;
+    applyChanges(s, changes);
+    EXPECT_EQ(s, to);
+    EXPECT_EQ(s.render.indirectVpls, 64);
+}
+
 TEST(SceneChange, NamesAndTexturesStayAndBadIndicesChangeNothing) {
     SceneState s = twoObjects();
     s.materials[1].diffuseTexture = 3;

@@ -12,6 +12,7 @@ SceneState SceneState::of(const Scene& scene) {
     s.punctualLights = scene.punctualLights;
     s.quadLights = scene.quadLights;
     s.environment = scene.environment;
+    s.render = scene.render;
     return s;
 }
 
@@ -26,6 +27,7 @@ void SceneState::applyTo(Scene& scene) const {
     scene.punctualLights = punctualLights;
     scene.quadLights = quadLights;
     scene.environment = environment;
+    scene.render = render;
 }
 
 }  // namespace igi

@@ -12,7 +12,8 @@
 namespace igi {
 
 /// Everything about a scene that may change while it renders: the camera, where each object
-/// is, the lights, the materials and the environment's radiance (or scale) and rotation.
+/// is, the lights, the materials, the environment's radiance (or scale) and rotation, and the
+/// settings it is rendered with (a `settings` control command changes them at a new epoch).
 /// Geometry and textures (the environment's map among them) stay as loaded. The master keeps the
 /// current state; each change makes a new epoch, and clients keep one state per epoch they
 /// still have tiles for.
@@ -23,6 +24,7 @@ struct SceneState {
     std::vector<PunctualLight> punctualLights;
     std::vector<QuadLight> quadLights;
     Environment environment;
+    RenderSettings render;
 
     /// The state a freshly loaded scene is in.
     static SceneState of(const Scene& scene);

@@ -392,6 +392,40 @@ async function checkLoopbackSession(browser) {
           moved ? `x ${start[0].toFixed(3)} -> ${moved[0].toFixed(3)}` : "it did not move");
   }
 
+  // The settings panel: the live keys with the values in force; Set sends a settings command.
+  // A value out of range is refused, naming the key and its range, and changes nothing.
+  const setSetting = (value) => page.eval(`(() => {
+      document.getElementById("settingValue").value = ${JSON.stringify(value)};
+      document.getElementById("applySetting").click();
+      return true; })()`);
+  const shownValue = await waitFor("the settings panel", () => page.eval(`(() => {
+      const select = document.getElementById("settingKey");
+      if (!select.options.length) return null;
+      select.value = "indirect_vpls";
+      select.dispatchEvent(new Event("change"));
+      return document.getElementById("settingValue").value; })()`), 10).catch(() => null);
+  check(shownValue === "18", "the settings panel shows a live key's value in force", String(shownValue));
+  await setSetting("40");
+  const changed = await waitFor("the new setting in the master's status", async () => {
+    const s = await control(m.controlPort, {cmd: "status"});
+    return s.settings.indirect_vpls === 40 ? s : null;
+  }, 10).catch(() => null);
+  check(changed !== null, "setting indirect_vpls in the panel changes the session's settings");
+  const statusLine = await waitFor("the status line's settings", async () => {
+    const text = await page.eval(`document.getElementById("overlay").textContent`);
+    return text.includes("indirect_vpls=40") ? text : null;
+  }, 20).catch(() => null);
+  check(statusLine !== null, "the status line shows the new setting");
+  await setSetting("200000");
+  const refusal = await waitFor("the refusal", () => page.eval(`(() => {
+      const text = document.getElementById("message").textContent;
+      return text.includes("/indirect_vpls") ? text : null; })()`), 10).catch(() => null);
+  check(refusal !== null && refusal.includes("[0, 100000]"),
+        "a value out of range is refused in the page, naming the key and its range", String(refusal));
+  const kept = await control(m.controlPort, {cmd: "status"});
+  check(kept.settings.indirect_vpls === 40, "the refused value changes nothing",
+        JSON.stringify(kept.settings));
+
   // Exposure and the save button go through the same commands.
   const saved = await page.eval(`igiView.send({cmd: "snapshot"})`);
   check(saved.ok && fs.existsSync(saved.path), "the save command writes an EXR on the master",
