@@ -38,6 +38,20 @@ function check(condition, what, detail = "") {
   console.log(`${condition ? "ok  " : "FAIL"} ${what}${detail ? ": " + detail : ""}`);
 }
 
+// `promise`, or an error naming `what` after `seconds`: a DevTools event that never comes
+// fails the test with its name instead of hanging it.
+async function withTimeout(promise, seconds, what) {
+  let timer;
+  const timeout = new Promise((_, reject) => {
+    timer = setTimeout(() => reject(new Error(`waited ${seconds} s for ${what}`)), seconds * 1000);
+  });
+  try {
+    return await Promise.race([promise, timeout]);
+  } finally {
+    clearTimeout(timer);
+  }
+}
+
 async function waitFor(what, predicate, seconds = 60) {
   const deadline = Date.now() + seconds * 1000;
   for (;;) {
@@ -161,12 +175,18 @@ async function openPage(browserPort, url) {
   await Runtime.enable();
   await Emulation.setDeviceMetricsOverride({width: 1100, height: 760, deviceScaleFactor: 1,
                                             mobile: false});
+  // Listening before navigating: a page that loads fast can send its load event in the same
+  // read from the socket as navigate's reply, and a listener added after that waits forever.
+  const loaded = Page.loadEventFired();
   await Page.navigate({url});
-  await Page.loadEventFired();
+  await withTimeout(loaded, 60, `the page ${url} to load`);
   const page = {
     client,
     eval: async (expression) => {
-      const r = await Runtime.evaluate({expression, awaitPromise: true, returnByValue: true});
+      // Bounded: waitFor checks its deadline only between calls.
+      const r = await withTimeout(
+          Runtime.evaluate({expression, awaitPromise: true, returnByValue: true}), 60,
+          `the page to evaluate ${expression.slice(0, 80)}`);
       if (r.exceptionDetails)
         throw new Error(`in the page: ${expression}: ${r.exceptionDetails.exception?.description}`);
       return r.result.value;
