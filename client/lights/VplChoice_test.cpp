@@ -11,24 +11,15 @@
 #include "math/Color.h"
 #include "scene/SceneLoader.h"
 #include "testing/TestScenes.h"
+#include "testing/TestVpls.h"
 #include "util/TestPaths.h"
 
 namespace igi {
 namespace {
 
-// VPLs scattered over a room's walls, floor and ceiling, some facing away from the point.
+// VPLs scattered over a room, a few of them bright.
 std::vector<Vpl> scatteredVpls(int count, std::mt19937& random) {
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    std::vector<Vpl> vpls;
-    for (int i = 0; i < count; ++i) {
-        Vpl v;
-        v.position = {8 * u(random) - 4, 3 * u(random), 6 * u(random) - 3};
-        v.normal = glm::normalize(glm::vec3(u(random) - 0.5f, u(random) - 0.5f, u(random) - 0.5f));
-        v.power = glm::vec3(0.1f + u(random), 0.1f + u(random), 0.1f + u(random)) *
-                  (i % 7 == 0 ? 20.0f : 1.0f);  // a few bright ones
-        vpls.push_back(v);
-    }
-    return vpls;
+    return testing::roomVpls(count, random, {.fewBright = true});
 }
 
 // What VPL i gives the point (any function that is zero wherever the choice gives zero

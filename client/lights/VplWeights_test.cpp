@@ -9,32 +9,15 @@
 #include <glm/geometric.hpp>
 
 #include "math/Color.h"
+#include "testing/TestVpls.h"
 
 namespace igi {
 namespace {
 
-// `count` VPLs over a room, some facing away from the point, every third (from the second) a
-// GGX metal lobe: both the plain lanes and the ranked ones.
+// `count` VPLs over a room, every third (from the second) a GGX metal lobe: both the plain
+// lanes and the ranked ones.
 std::vector<Vpl> roomVpls(int count, std::mt19937& random) {
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    std::vector<Vpl> vpls;
-    for (int i = 0; i < count; ++i) {
-        Vpl v;
-        v.position = {8 * u(random) - 4, 3 * u(random), 6 * u(random) - 3};
-        v.normal = glm::normalize(glm::vec3(u(random) - 0.5f, u(random) - 0.5f, u(random) - 0.5f));
-        v.power = glm::vec3(0.1f + u(random), 0.1f + u(random), 0.1f + u(random));
-        if (i % 3 == 1) {
-            v.ggx = true;
-            v.exponent = 0.1f;
-            v.f0 = glm::vec3(0.9f);
-            v.glossyPower = v.power * 4.0f;
-            v.mirror = v.normal;
-            v.diffuseShare = 0.2f;
-            v.glossyShare = 0.8f;
-        }
-        vpls.push_back(v);
-    }
-    return vpls;
+    return testing::roomVpls(count, random, {.ggxEveryThird = true});
 }
 
 struct Weights {
