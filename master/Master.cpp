@@ -24,16 +24,6 @@ constexpr auto kTickPeriod = std::chrono::milliseconds(20);
 // times its holder's usual latency, see TileScheduler): short enough to get past a stalled
 // client, long enough not to duplicate every tile at the end of a frame.
 constexpr double kDuplicateAfterSeconds = 0.05;
-// Frames open at once. A frame's last tiles wait on its slowest holders; while they do, the
-// other clients work on the next frames. With two, 16 clients each capped to a sixteenth of a
-// core idled in every frame's tail and reached 60-70 % of linear scaling; with four, linear
-// (scripts/bench_performance.sh, docs/PERFORMANCE.md).
-constexpr std::uint32_t kFramesInFlight = 4;
-// Each open frame holds a full-size CodedFrame: big images open fewer frames (never fewer
-// than two, which pipelining needs) to keep these buffers within this budget.
-constexpr std::size_t kOpenFrameBufferBudget = std::size_t{1} << 30;
-constexpr std::size_t kFrameBufferBytesPerPixel = proto::CodedFrame::kBytesPerPixel;
-
 double secondsSince(Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
 }
@@ -65,7 +55,8 @@ void Master::loadScene() {
     std::unique_ptr<Animation> animation;
     if (!options_.animation.empty()) {
         animation = std::make_unique<Animation>(Animation::load(options_.animation, scene_));
-        fitFramesToAnimation(*animation);
+        options_.frames = framesWithAnimation(options_, *animation);
+        if (!options_.framesGiven && progress_) progress_->setTotalFrames(options_.frames);
     }
     timeline_ =
         std::make_unique<SceneTimeline>(SceneState::of(scene_), std::move(animation),
@@ -75,10 +66,7 @@ void Master::loadScene() {
     auto layout = makeTiles(scene_.image.width, scene_.image.height, s.interleaveX, s.interleaveY,
                             s.tileSize);
     scheduler_ = std::make_unique<TileScheduler>(std::move(layout), s.setCount());
-    const std::size_t frameBytes = kFrameBufferBytesPerPixel * std::size_t(scene_.image.width) *
-                                   std::size_t(scene_.image.height);
-    framesInFlight_ = std::uint32_t(
-        std::clamp<std::size_t>(kOpenFrameBufferBudget / frameBytes, 2, kFramesInFlight));
+    frames_ = std::make_unique<OpenFrames>(scene_.image, s);
     compositor_ =
         std::make_unique<FrameCompositor>(scene_.image.width, scene_.image.height, s, pool_);
     spdlog::info("scene {}: {} meshes, {} materials, {}x{} pixels, {} tiles per frame, {}",
@@ -87,20 +75,6 @@ void Master::loadScene() {
                  s.integrator == IntegratorKind::Path
                      ? fmt::format("path tracer, {} samples per pixel", s.pathSamples)
                      : fmt::format("IGI integrator, GI mode {}", giModeName(s.gi)));
-}
-
-void Master::fitFramesToAnimation(const Animation& animation) {
-    const int length = int(animation.lastKeyFrame()) + 1;
-    if (!options_.framesGiven) {
-        // One frame of a 32-frame animation is never what was meant.
-        options_.frames = length;
-        if (progress_) progress_->setTotalFrames(length);
-        spdlog::info("--animation {}: rendering its {} frames (0 to its last keyframe {})",
-                     options_.animation.string(), length, length - 1);
-    } else if (options_.frames > 0 && options_.frames < length) {
-        spdlog::warn("--frames {} stops before the end of --animation {}: its last keyframe is {}",
-                     options_.frames, options_.animation.string(), length - 1);
-    }
 }
 
 void Master::onWelcomed(ConnectedClient& c) {
@@ -133,21 +107,20 @@ void Master::onReady(ConnectedClient& c, const proto::SceneReady& ready) {
 }
 
 void Master::maybeStart() {
-    if (started_ ||
+    if (limits_.started() ||
         roster_->readyCount() < std::max(1, options_.localClients + options_.remoteClients))
         return;
-    started_ = true;
-    renderStart_ = Clock::now();
-    lastClientSeen_ = renderStart_;
+    limits_.start();
+    lastClientSeen_ = limits_.startTime();
     spdlog::info("{} clients ready after {:.2f} s: rendering {} frames", roster_->readyCount(),
                  secondsSince(created_), options_.frames);
 }
 
 void Master::openFramesAsNeeded() {
-    // framesInFlight_ at most: the next one opens once every tile of the previous one has
+    // OpenFrames::capacity at most: the next one opens once every tile of the previous one has
     // been handed out, so clients never wait for the master to finish a frame.
-    while (framesLeft(nextFrameToOpen_) &&
-           nextFrameToOpen_ < nextFrameToFinish_ + framesInFlight_ &&
+    while (limits_.frameLeft(nextFrameToOpen_) &&
+           nextFrameToOpen_ < nextFrameToFinish_ + frames_->capacity() &&
            (nextFrameToOpen_ == nextFrameToFinish_ ||
             scheduler_->frameFullyAssigned(nextFrameToOpen_ - 1))) {
         const std::uint32_t f = nextFrameToOpen_++;
@@ -160,24 +133,7 @@ void Master::openFramesAsNeeded() {
                 if (c.sceneSent) c.connection->send(update, f, start.epoch);
         }
         scheduler_->openFrame(f);
-        auto record = std::make_unique<FrameRecord>();
-        if (!spareBuffers_.empty()) {
-            record->buffer = std::move(spareBuffers_.back());
-            spareBuffers_.pop_back();
-        }
-        const RenderSettings& rs = scene_.render;
-        record->buffer.reuse(scene_.image.width, scene_.image.height, rs.interleaveX,
-                             rs.interleaveY, rs.tileSize);
-        record->opened = Clock::now();
-        record->epoch = start.epoch;
-        // Accumulation restarts with every epoch (finishReadyFrames), so a frame's place in
-        // it is known when it opens.
-        if (openedEpoch_ != std::int64_t(start.epoch)) {
-            openedEpoch_ = start.epoch;
-            epochFirstFrame_ = f;
-        }
-        record->accumulation = scene_.render.accumulate ? f - epochFirstFrame_ : 0;
-        frames_[f] = std::move(record);
+        frames_->open(f, start.epoch);
     }
 }
 
@@ -189,7 +145,7 @@ int Master::depthFor(const ConnectedClient& s) const {
 }
 
 void Master::dispatch() {
-    if (!started_ || ending_) return;
+    if (!limits_.started() || ending_) return;
     for (auto& [id, s] : roster_->clients()) {
         if (!s.ready || !s.connection->isOpen()) continue;
         // A deep queue is refilled a quarter at a time rather than a tile per result: the
@@ -211,7 +167,7 @@ void Master::dispatch() {
             msg.height = std::uint16_t(t.height);
             msg.kx = std::uint16_t(t.kx);
             msg.ky = std::uint16_t(t.ky);
-            const FrameRecord& record = *frames_.at(a->frame);
+            const OpenFrames::Frame& record = frames_->at(a->frame);
             msg.accumulation = record.accumulation;
             s.connection->send(msg, a->frame, record.epoch);
         }
@@ -246,7 +202,7 @@ void Master::onTileResult(ConnectedClient& s, const proto::Header& header,
         stats_.addDuplicate(header.frame, s.id, wireBytes);
         return dispatch();
     }
-    FrameRecord* record = frames_.at(header.frame).get();
+    OpenFrames::Frame* record = &frames_->at(header.frame);
     ++record->decoding;
     const Tile tile = layout[tileId];
     pool_.submit(
@@ -275,7 +231,7 @@ void Master::onTileResult(ConnectedClient& s, const proto::Header& header,
 void Master::onTileDecoded(ClientId id, std::uint32_t frame, std::uint32_t tile,
                            const std::string& error, const proto::TileStats& tileStats,
                            std::uint64_t wireBytes, double seconds) {
-    FrameRecord& record = *frames_.at(frame);
+    OpenFrames::Frame& record = frames_->at(frame);
     --record.decoding;
     record.decodeSeconds += seconds;
     if (!error.empty()) {
@@ -296,7 +252,7 @@ void Master::finishReadyFrames() {
     // Frames are composited one at a time, in order: accumulation adds them in sequence.
     if (compositing_ || ending_ || nextFrameToFinish_ >= nextFrameToOpen_) return;
     const std::uint32_t f = nextFrameToFinish_;
-    FrameRecord* record = frames_.at(f).get();
+    OpenFrames::Frame* record = &frames_->at(f);
     if (!scheduler_->frameDone(f) || record->decoding > 0) return;
     compositing_ = true;
     // Accumulation restarts when the scene changed, and goes on while it does not.
@@ -314,19 +270,19 @@ void Master::finishReadyFrames() {
 
 void Master::noteShown(std::uint32_t f) {
     FrameStats& fs = stats_.frame(f);
-    fs.epoch = frames_.at(f)->epoch;
+    fs.epoch = frames_->at(f).epoch;
     fs.accumulated = std::uint32_t(compositor_->accumulatedFrames());
     fs.shown = true;
-    shownError_.shown(int(fs.accumulated), *compositor_, scheduler_->layout(), stats_.recentFps(),
-                      fs);
+    limits_.shown().shown(int(fs.accumulated), *compositor_, scheduler_->layout(),
+                          stats_.recentFps(), fs);
 }
 
 void Master::onComposited(std::uint32_t f, double seconds) {
     compositing_ = false;
     FrameStats& fs = stats_.frame(f);
     fs.compositeSeconds = seconds;
-    fs.decodeSeconds = frames_.at(f)->decodeSeconds;
-    fs.seconds = secondsSince(frames_.at(f)->opened);
+    fs.decodeSeconds = frames_->at(f).decodeSeconds;
+    fs.seconds = secondsSince(frames_->at(f).opened);
     noteShown(f);
     stats_.noteFrameDone(secondsSince(created_));
     // On a terminal the progress line says it; the frame lines are for logs and the curious.
@@ -339,20 +295,19 @@ void Master::onComposited(std::uint32_t f, double seconds) {
                     : "");
     if (progress_)
         progress_->update(int(f + 1 - options_.firstFrame), stats_.recentFps(),
-                          roster_->readyCount(), shownError_.describe(stats_.recentFps()));
+                          roster_->readyCount(), limits_.shown().describe(stats_.recentFps()));
     outputs_->writeFrameImages(f);
     publishToView(f);
     stats_.closeFrame(f);
     scheduler_->closeFrame(f);
     timeline_->endFrame(f);
-    spareBuffers_.push_back(std::move(frames_.at(f)->buffer));
-    frames_.erase(f);
+    frames_->close(f);
     ++nextFrameToFinish_;
-    if (options_.frames > 0 && framesDone() >= std::uint32_t(options_.frames)) {
+    if (limits_.allFramesDone(framesDone())) {
         stop();
         return;
     }
-    if (const std::string why = limitReached(); !why.empty()) {
+    if (const std::string why = limits_.reached(framesDone()); !why.empty()) {
         endRendering(why);
         if (ending_) return;
     }
@@ -365,7 +320,7 @@ void Master::onLeft(ClientId id, const std::string& reason) {
         if (roster_->empty()) io_.stop();
         return;
     }
-    const int released = started_ ? scheduler_->releaseClient(id) : 0;
+    const int released = limits_.started() ? scheduler_->releaseClient(id) : 0;
     spdlog::warn("client {} left ({}); {} of its tiles go to others", id, reason, released);
     dispatch();
 }
@@ -385,7 +340,7 @@ void Master::scheduleTick() {
     tick_.async_wait([this](const boost::system::error_code& ec) {
         if (ec || ending_) return;
         roster_->dropSilentHandshakes();
-        if (!started_ && secondsSince(created_) > options_.waitSeconds) {
+        if (!limits_.started() && secondsSince(created_) > options_.waitSeconds) {
             spdlog::error("only {} of {} clients were ready after {:.0f} s", roster_->readyCount(),
                           std::max(1, options_.localClients + options_.remoteClients),
                           options_.waitSeconds);
@@ -394,8 +349,8 @@ void Master::scheduleTick() {
         }
         // With every client gone, wait for new ones (they may be restarting) for as long as
         // for the first ones, then give up rather than hang.
-        if (started_ && roster_->readyCount() > 0) lastClientSeen_ = Clock::now();
-        if (started_ && secondsSince(lastClientSeen_) > options_.waitSeconds) {
+        if (limits_.started() && roster_->readyCount() > 0) lastClientSeen_ = Clock::now();
+        if (limits_.started() && secondsSince(lastClientSeen_) > options_.waitSeconds) {
             spdlog::error(
                 "every client left and none came back within {:.0f} s; {} of {} frames done",
                 options_.waitSeconds, framesDone(), options_.frames);
@@ -407,9 +362,8 @@ void Master::scheduleTick() {
         if (++ticks_ % 50 == 0) roster_->sendHeartbeats();
         stats_.noteTime(secondsSince(created_));  // igi-ctl status's rates
         // A time limit ends the rendering mid-frame too: the frames in flight are dropped.
-        if (started_ && options_.timeLimitSeconds > 0 && !renderingEnded_ &&
-            renderSeconds() >= options_.timeLimitSeconds) {
-            endRendering(limitReached());
+        if (limits_.timeUp()) {
+            endRendering(limits_.reached(framesDone()));
             if (ending_) return;
         }
         dispatch();
@@ -418,69 +372,32 @@ void Master::scheduleTick() {
 }
 
 void Master::stop() {
-    if (!renderingEnded_) renderEnd_ = Clock::now();
     endSession(0);
 }
 
-double Master::renderSeconds() const {
-    if (!started_) return 0.0;
-    const Clock::time_point end = renderingEnded_ || ending_ ? renderEnd_ : Clock::now();
-    return std::max(0.0, std::chrono::duration<double>(end - renderStart_).count());
-}
-
-std::string Master::limitReached() const {
-    if (!started_ || renderingEnded_) return {};
-    if (std::string why = shownError_.targetMet(); !why.empty()) return why;
-    if (options_.timeLimitSeconds > 0 && renderSeconds() >= options_.timeLimitSeconds)
-        return fmt::format("--time-limit {:g} s reached after {} frames", options_.timeLimitSeconds,
-                           framesDone());
-    return {};
-}
-
 void Master::endRendering(const std::string& why) {
-    if (options_.frames == 0 && (control_ || options_.view)) {
-        renderEnd_ = Clock::now();
-        renderingEnded_ = true;
-        spdlog::info("{}: rendering ends; the session stays live, idle (igi-ctl stop ends it)",
-                     why);
-        return;
-    }
-    spdlog::info("{}: ending the session", why);
-    stop();
+    if (limits_.end(why)) stop();
 }
 
 void Master::setTargetError(double target) {
     options_.targetError = target;
-    shownError_.setTarget(target);
+    limits_.shown().setTarget(target);
 }
 
 void Master::resume(bool changed) {
-    if (!renderingEnded_ || ending_) return;
-    // Time up is up for good (idle time counts). A change restarts the accumulation, which the
-    // target judges anew; without one, a target the image shown meets is met still.
-    if (options_.timeLimitSeconds > 0 && renderSeconds() >= options_.timeLimitSeconds) return;
-    if (!changed && !shownError_.targetMet().empty()) return;
-    renderingEnded_ = false;
+    if (!limits_.resume(changed)) return;
     spdlog::info("rendering resumes at frame {}", nextFrameToOpen_);
     dispatch();
 }
 
 nlohmann::json Master::errorJson() const {
-    // From the image shown last (noteShown): the compositor may be adding the next frame now,
-    // on the pool.
-    nlohmann::json j = shownError_.json(stats_.recentFps());
-    j["target_error"] =
-        options_.targetError > 0 ? nlohmann::json(options_.targetError) : nlohmann::json();
-    j["time_limit_s"] = options_.timeLimitSeconds > 0 ? nlohmann::json(options_.timeLimitSeconds)
-                                                      : nlohmann::json();
-    j["render_seconds"] = renderSeconds();
-    j["rendering"] = renderingEnded_ ? "idle" : (started_ ? "running" : "waiting");
-    return j;
+    return limits_.json(stats_.recentFps());
 }
 
 void Master::endSession(int exitCode) {
     if (ending_) return;
     ending_ = true;
+    limits_.sessionEnds();
     exitCode_ = exitCode;
     boost::system::error_code ignored;
     signals_.cancel(ignored);
@@ -578,8 +495,8 @@ void Master::startLocalClients() {
 }
 
 void Master::writeStatistics() {
-    const double start = std::chrono::duration<double>(renderStart_ - created_).count();
-    const double end = std::chrono::duration<double>(renderEnd_ - created_).count();
+    const double start = std::chrono::duration<double>(limits_.startTime() - created_).count();
+    const double end = std::chrono::duration<double>(limits_.endTime() - created_).count();
     spdlog::info("{} frames in {:.2f} s: {:.2f} fps", framesDone(), end - start,
                  stats_.fps(end - start));
     if (!options_.statsJson.empty())

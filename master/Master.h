@@ -3,7 +3,6 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <string>
 
@@ -21,10 +20,11 @@
 #include "LocalClients.h"
 #include "MasterOptions.h"
 #include "Messages.h"
+#include "OpenFrames.h"
 #include "ProgressLine.h"
+#include "RenderLimits.h"
 #include "SceneTimeline.h"
 #include "SessionControl.h"
-#include "ShownError.h"
 #include "Statistics.h"
 #include "TileScheduler.h"
 #include "scene/Scene.h"
@@ -38,7 +38,8 @@ namespace igi {
 /// composites each frame when its last tile is in, and ends the session. Its parts:
 /// ClientRoster (connections and the handshake), TileScheduler (who renders which tile),
 /// FrameCompositor (filtering and accumulation), FrameOutputs (images, snapshots, the web view),
-/// SessionControl (control commands and status), SceneTimeline (the scene's epochs).
+/// SessionControl (control commands and status), SceneTimeline (the scene's epochs), OpenFrames
+/// (the frames in flight) and RenderLimits (when rendering ends).
 ///
 /// All session state lives on one io thread (every connection handler runs there), so it
 /// needs no locks; decoding, compositing and encoding run on the thread pool.
@@ -53,21 +54,7 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     void showProgress(std::shared_ptr<ProgressLine> progress) { progress_ = std::move(progress); }
 
   private:
-    struct FrameRecord {
-        proto::CodedFrame buffer;
-        std::chrono::steady_clock::time_point opened;
-        std::uint32_t epoch = 0;  ///< the scene state every tile of it renders
-        /// Its place in the accumulation (TileAssign::accumulation): frames since its epoch
-        /// began, or 0 without accumulation.
-        std::uint32_t accumulation = 0;
-        int decoding = 0;          ///< tile results being decoded on the pool
-        double decodeSeconds = 0;  ///< pool time spent decoding and scattering its tiles
-    };
-
     void loadScene();
-    /// Without --frames, an animation runs to its last keyframe; a shorter --frames is warned.
-    void fitFramesToAnimation(const Animation& animation);
-    /// The run's settings, for --stats-json.
     std::uint32_t maxTileResultBytes() const;
     void startControl();
     void startLocalClients();
@@ -87,12 +74,8 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     void resume(bool changed) override;
     nlohmann::json errorJson() const override;
 
-    /// Why rendering should end now (--target-error met, --time-limit up), or empty.
-    std::string limitReached() const;
-    /// Ends the rendering for `why`: the session too, unless it is a live one (--frames 0
-    /// with a control port or the web view), which stays, idle, until stopped.
+    /// Ends the rendering for `why` (RenderLimits::end): the session too, unless it is live.
     void endRendering(const std::string& why);
-    double renderSeconds() const;
 
     void onTileDecoded(ClientId id, std::uint32_t frame, std::uint32_t tile,
                        const std::string& error, const proto::TileStats& tileStats,
@@ -101,10 +84,6 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     /// Frame `frame` (still in frames_) is in the compositor's image: its stats say so.
     void noteShown(std::uint32_t frame);
     void publishToView(std::uint32_t frame);
-    bool framesLeft(std::uint32_t frame) const {
-        return !renderingEnded_ && (options_.frames == 0 ||
-                                    frame - options_.firstFrame < std::uint32_t(options_.frames));
-    }
 
     void maybeStart();
     void dispatch();
@@ -132,14 +111,8 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     FrameLogPace framePace_;  ///< with options_.paceFrameLines
     boost::asio::signal_set signals_;
     std::int64_t compositedEpoch_ = -1;  ///< epoch of the frame last composited
-    std::int64_t openedEpoch_ = -1;      ///< epoch of the frame last opened
-    std::uint32_t epochFirstFrame_ = 0;  ///< the first frame of openedEpoch_
-    std::uint32_t framesInFlight_ = 2;   ///< frames open at once (from the image size)
     LocalClients localClients_;
-    std::map<std::uint32_t, std::unique_ptr<FrameRecord>> frames_;
-    /// Buffers of composited frames, for the frames to come: a fresh one would cost the master
-    /// its page faults and clearing every frame (CodedFrame::reuse).
-    std::vector<proto::CodedFrame> spareBuffers_;
+    std::unique_ptr<OpenFrames> frames_;
     bool compositing_ = false;
     /// Frames the pool has composited into the image (written by the pool's thread): one may
     /// finish after the session ended, when its io handler no longer runs.
@@ -147,17 +120,12 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     std::uint32_t nextFrameToOpen_ = 0;
     std::uint32_t nextFrameToFinish_ = 0;
     std::uint64_t ticks_ = 0;
-    bool started_ = false;
     bool ending_ = false;
-    /// A live session reached its target error or time limit: no more frames are opened (until
-    /// a change, resume()).
-    bool renderingEnded_ = false;
-    ShownError shownError_{options_.targetError};  ///< of the image shown last
+    RenderLimits limits_{
+        options_};  ///< when rendering ends; started() once the first frame may open
     int exitCode_ = 0;
     std::chrono::steady_clock::time_point created_;
-    std::chrono::steady_clock::time_point renderStart_;
     std::chrono::steady_clock::time_point lastClientSeen_;  ///< last tick with a ready client
-    std::chrono::steady_clock::time_point renderEnd_;
 };
 
 }  // namespace igi

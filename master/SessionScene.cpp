@@ -4,6 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "Animation.h"
 #include "ImageSize.h"
 #include "LightingReport.h"
 #include "OptionWarnings.h"
@@ -49,6 +50,20 @@ nlohmann::json sessionJson(const MasterOptions& options, const Scene& scene) {
             {"local_clients", options.localClients},
             {"remote_clients", options.remoteClients},
             {"render", renderSettingsJson(s)}};
+}
+
+int framesWithAnimation(const MasterOptions& options, const Animation& animation) {
+    const int length = int(animation.lastKeyFrame()) + 1;
+    if (!options.framesGiven) {
+        // One frame of a 32-frame animation is never what was meant.
+        spdlog::info("--animation {}: rendering its {} frames (0 to its last keyframe {})",
+                     options.animation.string(), length, length - 1);
+        return length;
+    }
+    if (options.frames > 0 && options.frames < length)
+        spdlog::warn("--frames {} stops before the end of --animation {}: its last keyframe is {}",
+                     options.frames, options.animation.string(), length - 1);
+    return options.frames;
 }
 
 }  // namespace igi

@@ -18,4 +18,9 @@ Scene loadSessionScene(const MasterOptions& options, SceneBundle& bundle);
 /// apart.
 nlohmann::json sessionJson(const MasterOptions& options, const Scene& scene);
 
+class Animation;
+/// The frames a session with `animation` renders: without --frames, the animation to its last
+/// keyframe; with it, --frames, warned about when it stops before the last keyframe.
+int framesWithAnimation(const MasterOptions& options, const Animation& animation);
+
 }  // namespace igi
