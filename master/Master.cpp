@@ -128,6 +128,10 @@ void Master::openFramesAsNeeded() {
         // (one connection keeps the order), and keeps the old epoch for tiles still out.
         const SceneTimeline::FrameStart start = timeline_->beginFrame(f);
         if (!start.changes.empty()) {
+            // The statistics say from which frame a settings command's settings are in force.
+            for (const SceneChange& change : start.changes)
+                if (const auto* settings = std::get_if<SettingsChange>(&change))
+                    stats_.frame(f).settings = renderSettingsJson(settings->settings).dump();
             const proto::SceneUpdate update{start.changes};
             for (auto& [id, c] : roster_->clients())
                 if (c.sceneSent) c.connection->send(update, f, start.epoch);

@@ -33,6 +33,7 @@ nlohmann::json frameJson(const FrameStats& f) {
     j["estimated_rel_mse"] = f.estimatedRelMse ? nlohmann::json(*f.estimatedRelMse) : nullptr;
     if (f.framesToTarget) j["predicted_frames_to_target"] = *f.framesToTarget;
     if (f.secondsToTarget) j["predicted_seconds_to_target"] = *f.secondsToTarget;
+    if (!f.settings.empty()) j["settings"] = nlohmann::json::parse(f.settings);
     return j;
 }
 

@@ -40,6 +40,9 @@ struct FrameStats {
     std::optional<double> estimatedRelMse;
     std::optional<double> framesToTarget;
     std::optional<double> secondsToTarget;
+    /// The render settings (as a scene file's "render" section, JSON) a settings command put in
+    /// force from this frame on; empty for a frame rendered with its predecessor's settings.
+    std::string settings;
     /// Composited and shown. A session stopped mid-frame leaves frames that were in flight
     /// (with tiles counted): they are not reported as frames.
     bool shown = false;

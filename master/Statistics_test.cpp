@@ -49,6 +49,8 @@ TEST(Statistics, FramesAreWrittenAsTheyCloseAndTheFileKeepsItsSchema) {
         stats.streamFramesFor(path);
         for (std::uint32_t f = 0; f < 5; ++f) {
             renderFrame(stats, f);
+            // A settings command's settings, in force from frame 3.
+            if (f == 3) stats.frame(f).settings = R"({"indirect_vpls":64})";
             stats.closeFrame(f);
         }
         // A late copy of a closed frame's tile counts for its client only.
@@ -70,6 +72,8 @@ TEST(Statistics, FramesAreWrittenAsTheyCloseAndTheFileKeepsItsSchema) {
         EXPECT_DOUBLE_EQ(j["frames"][f]["vpls"], 10.0);
     }
     EXPECT_EQ(j["frames"][2]["duplicate_tiles"], 0) << "written before the late copy came";
+    EXPECT_EQ(j["frames"][3]["settings"]["indirect_vpls"], 64);
+    EXPECT_FALSE(j["frames"][2].contains("settings")) << "only where the settings changed";
     EXPECT_DOUBLE_EQ(j["fps"], 2.5);
     EXPECT_DOUBLE_EQ(j["seconds"], 2.0);
     EXPECT_EQ(j["session"]["scene"], "test");

@@ -74,6 +74,7 @@ void expectChangeEqualsFreshSession(const std::string& name, const Change& c) {
     const fs::path secret = dir / "secret";
     std::ofstream(secret) << "the render cluster's shared secret\n";
     int changedAt = -1, lastCompared = -1;
+    nlohmann::json settingsInForce;
     pid_t joiner = -1;
     {
         std::vector<std::string> extra = {"--local-clients", "2", "--output-sequence",
@@ -94,6 +95,7 @@ void expectChangeEqualsFreshSession(const std::string& name, const Change& c) {
         ASSERT_TRUE(reply.is_object() && reply.value("ok", false)) << r.output;
         changedAt = reply.at("from_frame").get<int>();
         ASSERT_TRUE(reply.contains("settings")) << r.output;
+        settingsInForce = reply["settings"];
         lastCompared = changedAt + kFramesAfter - 1;
         if (c.joiner) {
             lastCompared = joinAfterTheChange(live, secret, joiner);
@@ -108,10 +110,19 @@ void expectChangeEqualsFreshSession(const std::string& name, const Change& c) {
             << readFile(live.log);
         ASSERT_GE(live.stop(), lastCompared + 1) << readFile(live.log);
     }
+    // The statistics name the frame from which the new settings are in force, and only it.
+    std::ifstream statsFile(dir / "stats.json");
+    const auto stats = nlohmann::json::parse(statsFile);
+    int framesWithSettings = 0;
+    for (const auto& frame : stats.at("frames")) {
+        if (!frame.contains("settings")) continue;
+        ++framesWithSettings;
+        EXPECT_EQ(frame.at("index").get<int>(), changedAt);
+        EXPECT_EQ(frame.at("settings"), settingsInForce);
+    }
+    EXPECT_EQ(framesWithSettings, 1);
     if (c.joiner) {
         EXPECT_EQ(waitProcess(joiner, 30), 0) << readFile(dir / "joiner.log");
-        std::ifstream statsFile(dir / "stats.json");
-        const auto stats = nlohmann::json::parse(statsFile);
         ASSERT_EQ(stats["clients"].size(), 3u);
         EXPECT_GT(stats["clients"][2]["tiles"].get<int>(), 0) << "the joiner never got a tile";
     }
