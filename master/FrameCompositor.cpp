@@ -49,19 +49,26 @@ FrameCompositor::FrameCompositor(int width, int height, const RenderSettings& se
                                  ThreadPool& pool)
     : width_(width),
       height_(height),
-      accumulate_(settings.accumulate),
-      filter_{settings.effectiveFilterX(), settings.effectiveFilterY(),
-              settings.filterDepthThreshold, settings.filterNormalThreshold},
       pool_(pool),
-      order_(width, settings.interleaveX),
       rowsPerBlock_(rowsPerBlock(height, int(pool.size()))),
-      filtered_(width, height),
-      shown_(accumulate_ ? width : 0, accumulate_ ? height : 0),
-      pixelError_(accumulate_ ? std::size_t(width) * height : 0, 0.0f) {
-    if (filter_.sizeY > FilterWindow::kMaxRows)
+      filtered_(width, height) {
+    reconfigure(settings);
+}
+
+void FrameCompositor::reconfigure(const RenderSettings& settings) {
+    const DiscontinuityFilterSettings filter{
+        settings.effectiveFilterX(), settings.effectiveFilterY(), settings.filterDepthThreshold,
+        settings.filterNormalThreshold};
+    if (filter.sizeY > FilterWindow::kMaxRows)
         throw std::invalid_argument("filter window taller than " +
                                     std::to_string(FilterWindow::kMaxRows) + " rows");
-    accumulator_.reset(order_, height, withdrawBlur(settings), filter_.sizeX, filter_.sizeY);
+    filter_ = filter;
+    accumulate_ = settings.accumulate;
+    order_ = CellOrder(width_, settings.interleaveX);
+    shown_ = Image(accumulate_ ? width_ : 0, accumulate_ ? height_ : 0);
+    pixelError_.assign(accumulate_ ? std::size_t(width_) * height_ : 0, 0.0f);
+    estimatedRelMse_ = 0.0;
+    accumulator_.reset(order_, height_, withdrawBlur(settings), filter_.sizeX, filter_.sizeY);
 }
 
 template <typename F>

@@ -33,6 +33,10 @@ class FrameCompositor {
 
     /// Starts a new accumulation (the view or the scene changed).
     void resetAccumulation();
+    /// Composites frames of `settings` from now on (interleave, filter, accumulate: a settings
+    /// command's), as a compositor made with them would; the accumulation starts anew. Not
+    /// while a frame is being composited or an image read.
+    void reconfigure(const RenderSettings& settings);
     int accumulatedFrames() const { return accumulator_.frames(); }
     /// What composite() last returned: the accumulated mean, or the last frame.
     const Image& shown() const { return accumulate_ ? shown_ : filtered_; }

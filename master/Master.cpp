@@ -10,6 +10,7 @@
 #include "LocalClientLaunch.h"
 #include "OpenPort.h"
 #include "SessionScene.h"
+#include "SettingsCommand.h"
 #include "render/Tile.h"
 #include "scene/RenderSettingsJson.h"
 #include "scene/SceneError.h"
@@ -63,10 +64,7 @@ void Master::loadScene() {
                                         joinHistoryDepth(scene_.render), options_.firstFrame);
 
     const RenderSettings& s = scene_.render;
-    auto layout = makeTiles(scene_.image.width, scene_.image.height, s.interleaveX, s.interleaveY,
-                            s.tileSize);
-    scheduler_ = std::make_unique<TileScheduler>(std::move(layout), s.setCount());
-    frames_ = std::make_unique<OpenFrames>(scene_.image, s);
+    makeFrames(s);
     compositor_ =
         std::make_unique<FrameCompositor>(scene_.image.width, scene_.image.height, s, pool_);
     spdlog::info("scene {}: {} meshes, {} materials, {}x{} pixels, {} tiles per frame, {}",
@@ -75,6 +73,30 @@ void Master::loadScene() {
                  s.integrator == IntegratorKind::Path
                      ? fmt::format("path tracer, {} samples per pixel", s.pathSamples)
                      : fmt::format("IGI integrator, GI mode {}", giModeName(s.gi)));
+}
+
+void Master::makeFrames(const RenderSettings& s) {
+    frameSettings_ = s;
+    framesMadeAt_ = nextFrameToOpen_;
+    auto layout = makeTiles(scene_.image.width, scene_.image.height, s.interleaveX, s.interleaveY,
+                            s.tileSize);
+    scheduler_ = std::make_unique<TileScheduler>(std::move(layout), s.setCount());
+    frames_ = std::make_unique<OpenFrames>(scene_.image, s);
+}
+
+bool Master::framesFollowSettings() {
+    const RenderSettings& next = timeline_->controlled().render;
+    if (sameFrameSettings(frameSettings_, next)) return true;
+    // A settings command changed how frames are made: the frames in flight, made the old way,
+    // are composited first; then the tile layout, the frame buffers and the compositor are made
+    // anew, as a session started with the new settings at this frame makes them.
+    if (nextFrameToOpen_ != nextFrameToFinish_ || compositing_) return false;
+    pool_.waitIdle();  // the last frame's images may still be read from the compositor
+    makeFrames(next);
+    compositor_->reconfigure(next);
+    spdlog::info("frame {}: tiles, filter and accumulation made anew for the new settings",
+                 nextFrameToOpen_);
+    return true;
 }
 
 void Master::onWelcomed(ConnectedClient& c) {
@@ -122,7 +144,8 @@ void Master::openFramesAsNeeded() {
     while (limits_.frameLeft(nextFrameToOpen_) &&
            nextFrameToOpen_ < nextFrameToFinish_ + frames_->capacity() &&
            (nextFrameToOpen_ == nextFrameToFinish_ ||
-            scheduler_->frameFullyAssigned(nextFrameToOpen_ - 1))) {
+            scheduler_->frameFullyAssigned(nextFrameToOpen_ - 1)) &&
+           framesFollowSettings()) {
         const std::uint32_t f = nextFrameToOpen_++;
         // A changed scene is a new epoch: every client gets the update before any tile of it
         // (one connection keeps the order), and keeps the old epoch for tiles still out.
@@ -162,7 +185,7 @@ void Master::dispatch() {
             const auto a = scheduler_->next(id, kDuplicateAfterSeconds);
             if (!a) break;
             const Tile& t = scheduler_->layout()[a->tile];
-            stats_.noteAssignment(a->frame, id, t.setIndex(scene_.render.interleaveX));
+            stats_.noteAssignment(a->frame, id, t.setIndex(frameSettings_.interleaveX));
             proto::TileAssign msg;
             msg.tileId = a->tile;
             msg.x0 = std::uint16_t(t.x0);
@@ -185,6 +208,12 @@ void Master::onTileResult(ConnectedClient& s, const proto::Header& header,
     if (header.frame >= nextFrameToOpen_)
         return roster_->refuse(s, "a result for frame " + std::to_string(header.frame) +
                                       ", which was never handed out");
+    // A late copy of a tile of a frame made before the settings changed its layout: its tile
+    // number is of the old layout.
+    if (header.frame < framesMadeAt_) {
+        stats_.addDuplicate(header.frame, s.id, proto::kHeaderSize + header.payloadSize);
+        return dispatch();
+    }
     std::uint32_t tileId = 0;
     try {
         tileId = proto::peekTileId(payload);
@@ -248,7 +277,7 @@ void Master::onTileDecoded(ClientId id, std::uint32_t frame, std::uint32_t tile,
     const Tile& t = scheduler_->layout()[tile];
     stats_.addTile(
         frame, id, tileStats, wireBytes,
-        std::uint32_t(t.pixelCount(scene_.render.interleaveX, scene_.render.interleaveY)));
+        std::uint32_t(t.pixelCount(frameSettings_.interleaveX, frameSettings_.interleaveY)));
     finishReadyFrames();
 }
 
@@ -508,11 +537,11 @@ void Master::writeStatistics() {
 }
 
 std::uint32_t Master::maxTileResultBytes() const {
-    int largest = 0;
-    for (const Tile& t : scheduler_->layout())
-        largest =
-            std::max(largest, t.pixelCount(scene_.render.interleaveX, scene_.render.interleaveY));
-    return std::uint32_t(4096 + 32 * std::size_t(largest));
+    // A tile holds at most tile_size x tile_size pixels of one cell, whatever the interleaving
+    // (which a settings command may change; tile_size it may not).
+    const std::size_t largest = std::size_t(std::min(scene_.render.tileSize, scene_.image.width)) *
+                                std::size_t(std::min(scene_.render.tileSize, scene_.image.height));
+    return std::uint32_t(4096 + 32 * largest);
 }
 
 }  // namespace igi

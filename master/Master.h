@@ -55,6 +55,13 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
 
   private:
     void loadScene();
+    /// The tile layout and the open frames for frames made with `settings`, from the next
+    /// frame to open.
+    void makeFrames(const RenderSettings& settings);
+    /// Whether the next frame can be made with the settings in force: after a settings command
+    /// that changed how frames are made, once the frames in flight are composited (then it
+    /// makes them anew and returns true).
+    bool framesFollowSettings();
     std::uint32_t maxTileResultBytes() const;
     void startControl();
     void startLocalClients();
@@ -111,6 +118,8 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     FrameLogPace framePace_;  ///< with options_.paceFrameLines
     boost::asio::signal_set signals_;
     std::int64_t compositedEpoch_ = -1;  ///< epoch of the frame last composited
+    RenderSettings frameSettings_;       ///< what the frames are made with (makeFrames)
+    std::uint32_t framesMadeAt_ = 0;     ///< the first frame made with frameSettings_
     LocalClients localClients_;
     std::unique_ptr<OpenFrames> frames_;
     bool compositing_ = false;

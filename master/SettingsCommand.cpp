@@ -9,16 +9,16 @@ namespace {
 
 using Settings = const RenderSettings&;
 
-// A setting the master itself works with: changing it would take a new tile layout, frame
-// buffers, filter or accumulation, which a running session does not rebuild. (The GI mode and
-// the integrator are the clients' alone; the joiners' history follows them, SceneTimeline.)
-struct FixedSetting {
+struct SettingCompare {
     const char* key;
     bool (*same)(const RenderSettings&, const RenderSettings&);
 };
 
-const std::vector<FixedSetting>& fixedSettings() {
-    static const std::vector<FixedSetting> fixed = {
+// The settings the master's frames are made from: the tile layout, the frame buffers, the
+// discontinuity buffer and the accumulation. They change live: the master lets the frames in
+// flight finish and rebuilds these at the change (Master::openFramesAsNeeded).
+const std::vector<SettingCompare>& frameSettings() {
+    static const std::vector<SettingCompare> frame = {
         {"interleave",
          [](Settings a, Settings b) {
              return a.interleaveX == b.interleaveX && a.interleaveY == b.interleaveY;
@@ -32,6 +32,16 @@ const std::vector<FixedSetting>& fixedSettings() {
         {"progressive_filter",
          [](Settings a, Settings b) { return a.progressiveFilter == b.progressiveFilter; }},
         {"accumulate", [](Settings a, Settings b) { return a.accumulate == b.accumulate; }},
+    };
+    return frame;
+}
+
+// Fixed for the session. tile_size bounds the size of a tile result, which every client
+// connection is given as a limit when it is accepted (a hostile client cannot make the master
+// read more); the seed is every client's since the handshake. (The GI mode and the integrator
+// are the clients' alone; the joiners' history follows them, SceneTimeline.)
+const std::vector<SettingCompare>& fixedSettings() {
+    static const std::vector<SettingCompare> fixed = {
         {"tile_size", [](Settings a, Settings b) { return a.tileSize == b.tileSize; }},
         {"seed", [](Settings a, Settings b) { return a.seed == b.seed; }},
     };
@@ -46,19 +56,28 @@ std::string liveList() {
 
 std::string fixedReason(const char* key) {
     return std::string("'") + key +
-           "' is fixed while the session runs (the master makes its tiles, filter and "
-           "accumulation from it when it starts); these change live: " +
-           liveList();
+           (key == std::string("seed")
+                ? "' is fixed while the session runs (every client has drawn from it since it "
+                  "joined)"
+                : "' is fixed while the session runs (it bounds the size of the tile results "
+                  "every client connection accepts)") +
+           "; these change live: " + liveList();
 }
 
 }  // namespace
+
+bool sameFrameSettings(const RenderSettings& a, const RenderSettings& b) {
+    for (const SettingCompare& f : frameSettings())
+        if (!f.same(a, b)) return false;
+    return true;
+}
 
 std::vector<std::string> liveSettingKeys() {
     std::vector<std::string> keys;
     const nlohmann::json every = renderSettingsJson(RenderSettings{});  // outlives the loop
     for (const auto& [key, value] : every.items()) {
         bool fixed = false;
-        for (const FixedSetting& f : fixedSettings()) fixed = fixed || key == f.key;
+        for (const SettingCompare& f : fixedSettings()) fixed = fixed || key == f.key;
         if (!fixed) keys.push_back(key);
     }
     keys.push_back("converge");      // sets the estimator's parts at once (not progressive_filter)
@@ -80,11 +99,9 @@ SettingsRequest settingsRequest(const JsonNode& command, const RenderSettings& c
     RenderSettings next = current;
     // The scene file's reader: the same keys, checks and messages (naming the key and range).
     applyRenderSettingsJson(keys, next, command.file(), command.path());
-    for (const FixedSetting& f : fixedSettings()) {
+    for (const SettingCompare& f : fixedSettings()) {
         if (f.same(current, next)) continue;
-        // "converge" changes progressive_filter without naming it: say which key did.
-        const std::string given = keys.contains(f.key) ? f.key : "converge";
-        JsonNode(command.value(), command.file(), command.path() + "/" + given)
+        JsonNode(command.value(), command.file(), command.path() + "/" + f.key)
             .fail(fixedReason(f.key));
     }
     request.change = SettingsChange{next};

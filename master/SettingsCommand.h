@@ -11,10 +11,14 @@
 namespace igi {
 
 /// The render settings a running session can change (the `settings` control command), as the
-/// keys of a scene file's "render" section, and `target_error`. The others are fixed for the
-/// session: the master's tile layout, frame buffers, filter and accumulation are made from them
-/// when it starts.
+/// keys of a scene file's "render" section, and `target_error`. The others (tile_size, seed)
+/// are fixed for the session.
 std::vector<std::string> liveSettingKeys();
+
+/// Whether the master's frames are made the same way under `a` and `b`: the same tile layout,
+/// frame buffers, discontinuity buffer and accumulation (interleave, filter, its thresholds,
+/// progressive_filter, accumulate). When not, the master rebuilds them at the change.
+bool sameFrameSettings(const RenderSettings& a, const RenderSettings& b);
 
 /// The most a target error may be (a relMSE; 0: no target).
 inline constexpr double kMaxTargetError = 100;

@@ -152,16 +152,18 @@ void expectChangeEqualsFreshSession(const std::string& name, const Change& c) {
     // The frame before the change was rendered with the old settings: not the fresh session's.
     EXPECT_FALSE(fs::exists(sequenceFrame(dir, "fresh", changedAt - 1)));
     // And the change changed something: a session that kept the old settings there does not
-    // render the same frame (so the equality above is not that of two unchanged sessions).
-    args = sceneArgs(1);
+    // render the same frames (so the equality above is not that of two unchanged sessions).
+    // The last of them is compared: a change of the accumulation shows from the second frame.
+    const int last = changedAt + kFramesAfter - 1;
+    args = sceneArgs(kFramesAfter);
     args.insert(args.end(), {"--local-clients", "1", "--first-frame", std::to_string(changedAt),
                              "--output-sequence", (dir / "unchanged_%04d.exr").string()});
     args.insert(args.end(), c.common.begin(), c.common.end());
     args.insert(args.end(), c.before.begin(), c.before.end());
     const ProcessResult unchanged = runProcess(masterCommand(args), dir / "unchanged.log");
     ASSERT_EQ(unchanged.exitCode, 0) << unchanged.output;
-    const Image a = readFiniteImage(sequenceFrame(dir, "live", changedAt)),
-                b = readFiniteImage(sequenceFrame(dir, "unchanged", changedAt));
+    const Image a = readFiniteImage(sequenceFrame(dir, "live", last)),
+                b = readFiniteImage(sequenceFrame(dir, "unchanged", last));
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
     std::size_t differing = 0;
     for (std::size_t i = 0; i < a.pixels.size(); ++i) differing += a.pixels[i] != b.pixels[i];
@@ -203,6 +205,26 @@ TEST(Settings, SwitchingFromIgiToPhotonMappingEqualsASessionStartedInItAtThatFra
                                                    .before = {},
                                                    .command = {"gi", "photonmap"},
                                                    .after = {"--gi", "photonmap"}});
+}
+
+// The settings the master makes its frames with (the tile layout, the discontinuity buffer, the
+// accumulation) change too: the frames in flight finish the old way, and from the change on
+// the images are a session's started with the new ones.
+TEST(Settings, AChangeOfInterleavingAndFilterEqualsASessionStartedWithThemAtThatFrame) {
+    expectChangeEqualsFreshSession(
+        "settings-interleave",
+        {.common = {},
+         .before = {},
+         .command = {"interleave", "[2,2]", "filter", "[4,4]", "filter_depth_threshold", "0.2"},
+         .after = {"--interleave", "2x2", "--filter", "4x4", "--filter-depth-threshold", "0.2"}});
+}
+
+TEST(Settings, TurningAccumulationOffAndTheProgressiveFilterOffEqualsAFreshSession) {
+    expectChangeEqualsFreshSession("settings-accumulate",
+                                   {.common = {},
+                                    .before = {},
+                                    .command = {"accumulate", "false", "converge", "false"},
+                                    .after = {"--no-accumulate", "--converge", "off"}});
 }
 
 // A client that joins after the change renders with the settings in force: every frame from the
@@ -299,7 +321,7 @@ TEST(Settings, ABadValueIsRefusedNamingTheKeyAndItsRangeAndChangesNothing) {
         {{"settings", "light_sampling", "best"},
          "/light_sampling: unknown value 'best' (expected one of: auto, power, tree)"},
         {{"settings", "indirect_vpl", "8"}, "/indirect_vpl: unknown key"},
-        {{"settings", "interleave", "[2,2]"}, "/interleave: 'interleave' is fixed"},
+        {{"settings", "tile_size", "16"}, "/tile_size: 'tile_size' is fixed"},
         // One bad key refuses the whole command: the good one does not change either.
         {{"settings", "direct_samples", "2", "caustic_photons", "-1"},
          "/caustic_photons: must be in [0, 10000000], got -1"},
