@@ -8,7 +8,6 @@
 
 #include "Codec.h"
 #include "LocalClientLaunch.h"
-#include "OpenPort.h"
 #include "SessionScene.h"
 #include "SettingsCommand.h"
 #include "render/Tile.h"
@@ -186,17 +185,8 @@ void Master::dispatch() {
             if (!a) break;
             const Tile& t = scheduler_->layout()[a->tile];
             stats_.noteAssignment(a->frame, id, t.setIndex(frameSettings_.interleaveX));
-            proto::TileAssign msg;
-            msg.tileId = a->tile;
-            msg.x0 = std::uint16_t(t.x0);
-            msg.y0 = std::uint16_t(t.y0);
-            msg.width = std::uint16_t(t.width);
-            msg.height = std::uint16_t(t.height);
-            msg.kx = std::uint16_t(t.kx);
-            msg.ky = std::uint16_t(t.ky);
-            const OpenFrames::Frame& record = frames_->at(a->frame);
-            msg.accumulation = record.accumulation;
-            s.connection->send(msg, a->frame, record.epoch);
+            s.connection->send(frames_->assignment(a->frame, a->tile, t), a->frame,
+                               frames_->at(a->frame).epoch);
         }
     }
 }
@@ -434,7 +424,7 @@ void Master::endSession(int exitCode) {
     exitCode_ = exitCode;
     boost::system::error_code ignored;
     signals_.cancel(ignored);
-    if (control_) control_->close();
+    if (sessionControl_) sessionControl_->closePorts();
     if (outputs_) outputs_->close();
     // Stragglers that do not close on Shutdown are closed after a grace period.
     if (!roster_ || roster_->shutDown()) {
@@ -463,20 +453,7 @@ int Master::run() {
                                                        options_, scene_, *timeline_, stats_,
                                                        *roster_, *compositor_, *outputs_, created_);
     roster_->listen(scene_.render.seed, maxTileResultBytes());
-    if (options_.control) {
-        control_ = openPort("--control", options_.controlHost, options_.controlPort, [&] {
-            return std::make_unique<ControlServer>(
-                io_, options_.controlHost, options_.controlPort,
-                [this](const std::string& line, ControlServer::Reply reply) {
-                    sessionControl_->handle(line, std::move(reply), "igi-ctl");
-                });
-        });
-        spdlog::info("control commands on {}:{}", options_.controlHost, control_->port());
-    }
-    if (options_.view)
-        outputs_->startView([this](const std::string& line, ControlServer::Reply reply) {
-            sessionControl_->handle(line, std::move(reply), "view");
-        });
+    sessionControl_->openPorts(io_);
     signals_.async_wait([this](const boost::system::error_code& ec, int signal) {
         if (ec) return;
         spdlog::warn("signal {}: ending the session after {} frames", signal, framesDone());

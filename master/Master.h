@@ -113,7 +113,6 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     std::unique_ptr<SceneTimeline> timeline_;
     std::unique_ptr<FrameOutputs> outputs_;
     std::unique_ptr<SessionControl> sessionControl_;
-    std::unique_ptr<ControlServer> control_;
     std::shared_ptr<ProgressLine> progress_;
     FrameLogPace framePace_;  ///< with options_.paceFrameLines
     boost::asio::signal_set signals_;

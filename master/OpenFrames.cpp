@@ -49,6 +49,20 @@ OpenFrames::Frame& OpenFrames::open(std::uint32_t frame, std::uint32_t epoch) {
     return opened;
 }
 
+proto::TileAssign OpenFrames::assignment(std::uint32_t frame, std::uint32_t tileId,
+                                         const Tile& tile) {
+    proto::TileAssign message;
+    message.tileId = tileId;
+    message.x0 = std::uint16_t(tile.x0);
+    message.y0 = std::uint16_t(tile.y0);
+    message.width = std::uint16_t(tile.width);
+    message.height = std::uint16_t(tile.height);
+    message.kx = std::uint16_t(tile.kx);
+    message.ky = std::uint16_t(tile.ky);
+    message.accumulation = at(frame).accumulation;
+    return message;
+}
+
 void OpenFrames::close(std::uint32_t frame) {
     auto it = frames_.find(frame);
     if (it == frames_.end()) return;

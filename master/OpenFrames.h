@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "CodedFrame.h"
+#include "Messages.h"
+#include "render/Tile.h"
 #include "scene/Scene.h"
 
 namespace igi {
@@ -36,6 +38,8 @@ class OpenFrames {
     /// valid until the frame is closed.
     Frame& open(std::uint32_t frame, std::uint32_t epoch);
     Frame& at(std::uint32_t frame) { return *frames_.at(frame); }
+    /// The message that hands tile `tileId` (`tile`) of open frame `frame` to a client.
+    proto::TileAssign assignment(std::uint32_t frame, std::uint32_t tileId, const Tile& tile);
     /// Closes `frame`, keeping its buffer for a frame to come.
     void close(std::uint32_t frame);
 

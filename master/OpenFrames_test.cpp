@@ -48,5 +48,21 @@ TEST(OpenFrames, AFrameOpensWithABufferOfTheImageAndAClosedOnesRecordGoes) {
     EXPECT_EQ(next.accumulation, 1u);
 }
 
+TEST(OpenFrames, AnAssignmentCarriesTheTileAndItsFramesPlaceInTheAccumulation) {
+    OpenFrames frames(image(64, 48), RenderSettings{});
+    frames.open(3, 0);
+    frames.open(4, 0);
+    const Tile tile{6, 9, 12, 15, 1, 2};
+    const proto::TileAssign a = frames.assignment(4, 17, tile);
+    EXPECT_EQ(a.tileId, 17u);
+    EXPECT_EQ(a.x0, 6);
+    EXPECT_EQ(a.y0, 9);
+    EXPECT_EQ(a.width, 12);
+    EXPECT_EQ(a.height, 15);
+    EXPECT_EQ(a.kx, 1);
+    EXPECT_EQ(a.ky, 2);
+    EXPECT_EQ(a.accumulation, 1u);
+}
+
 }  // namespace
 }  // namespace igi

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "ControlCommand.h"
+#include "OpenPort.h"
 #include "ScenePick.h"
 #include "SettingsCommand.h"
 #include "scene/RenderSettingsJson.h"
@@ -61,6 +62,27 @@ SessionControl::SessionControl(Frames& frames, const MasterOptions& options, Sce
       compositor_(compositor),
       outputs_(outputs),
       created_(created) {}
+
+void SessionControl::openPorts(boost::asio::io_context& io) {
+    if (options_.control) {
+        control_ = openPort("--control", options_.controlHost, options_.controlPort, [&] {
+            return std::make_unique<ControlServer>(
+                io, options_.controlHost, options_.controlPort,
+                [this](const std::string& line, ControlServer::Reply reply) {
+                    handle(line, std::move(reply), "igi-ctl");
+                });
+        });
+        spdlog::info("control commands on {}:{}", options_.controlHost, control_->port());
+    }
+    if (options_.view)
+        outputs_.startView([this](const std::string& line, ControlServer::Reply reply) {
+            handle(line, std::move(reply), "view");
+        });
+}
+
+void SessionControl::closePorts() {
+    if (control_) control_->close();
+}
 
 void SessionControl::handle(const std::string& line, ControlServer::Reply reply, const char* from) {
     auto error = [&](const std::string& what) {

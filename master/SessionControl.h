@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -48,6 +49,12 @@ class SessionControl {
                    const FrameCompositor& compositor, FrameOutputs& outputs,
                    std::chrono::steady_clock::time_point created);
 
+    /// Opens the control port (--control) and the web view's (--view), whose commands come here.
+    /// Throws std::runtime_error naming the flag and the address when a port cannot be opened.
+    void openPorts(boost::asio::io_context& io);
+    /// Closes the control port (the view's is FrameOutputs').
+    void closePorts();
+
     /// Runs one command line from `from` ("igi-ctl" or "view") and answers it (now, or for a
     /// snapshot when it is written). igi-ctl's changes are logged, the view's (a drag sends
     /// dozens a second) only at debug level.
@@ -68,6 +75,7 @@ class SessionControl {
     const FrameCompositor& compositor_;
     FrameOutputs& outputs_;
     std::chrono::steady_clock::time_point created_;
+    std::unique_ptr<ControlServer> control_;
 };
 
 }  // namespace igi
