@@ -425,6 +425,11 @@ async function checkLoopbackSession(browser) {
       select.dispatchEvent(new Event("change"));
       return document.getElementById("settingValue").value; })()`), 10).catch(() => null);
   check(shownValue === "18", "the settings panel shows a live key's value in force", String(shownValue));
+  // The error curve of the settings in force has points before the change.
+  const firstCurve = await waitFor("the error curve's points", () => page.eval(
+      `igiView.curves.current && igiView.curves.current.points.length >= 3 && igiView.curves.current.key`),
+      60).catch(() => null);
+  check(firstCurve !== null, "the view draws the estimated error of the accumulation against time");
   await setSetting("40");
   const changed = await waitFor("the new setting in the master's status", async () => {
     const s = await control(m.controlPort, {cmd: "status"});
@@ -436,6 +441,26 @@ async function checkLoopbackSession(browser) {
     return text.includes("indirect_vpls=40") ? text : null;
   }, 20).catch(() => null);
   check(statusLine !== null, "the status line shows the new setting");
+  // The change starts a curve of its own and keeps the old settings' curve beside it.
+  const curves = await waitFor("the new settings' curve beside the old one", () => page.eval(`(() => {
+      const {current, previous} = igiView.curves;
+      if (!previous || !current || current.points.length < 2) return null;
+      const canvas = document.getElementById("curve");
+      const pixels = canvas.getContext("2d").getImageData(0, 0, canvas.width, canvas.height).data;
+      let blue = 0, amber = 0;
+      for (let i = 0; i < pixels.length; i += 4) {
+        if (pixels[i + 2] > 180 && pixels[i] < 140) blue++;
+        if (pixels[i] > 180 && pixels[i + 1] > 130 && pixels[i + 2] < 120) amber++;
+      }
+      return {now: current.settings.indirect_vpls, before: previous.settings.indirect_vpls,
+              points: [previous.points.length, current.points.length], blue, amber,
+              legend: document.getElementById("curveLegend").textContent}; })()`), 60)
+      .catch(() => null);
+  check(curves !== null && curves.now === 40 && curves.before === 18 && curves.blue > 20 &&
+        curves.amber > 20 && curves.legend.includes("now: indirect_vpls=40") &&
+        curves.legend.includes("before: indirect_vpls=18"),
+        "a setting changed in the panel starts a new error curve and keeps the old one beside it",
+        JSON.stringify(curves));
   await setSetting("200000");
   const refusal = await waitFor("the refusal", () => page.eval(`(() => {
       const text = document.getElementById("message").textContent;
