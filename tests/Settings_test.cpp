@@ -198,6 +198,23 @@ TEST(Settings, AChangeInSelectivePhotonTracingEqualsASessionStartedWithItAtThatF
     fs::remove_all(animation.parent_path());
 }
 
+// Photon streaming fills its pool afresh at new settings; its batches are keyed by the frame
+// their epoch begins at, so the pool is a fresh session's there. The glass ball moves at frame 2
+// (a new epoch and batch before the change).
+TEST(Settings, AChangeInPhotonStreamingEqualsASessionStartedWithItAtThatFrame) {
+    const fs::path animation = scratchDir("settings-stream-animation") / "move.json";
+    std::ofstream(animation) << R"({"objects": {"glass_ball": [
+        {"frame": 0, "translate": [0.42, 0.36, 0.3]},
+        {"frame": 1, "translate": [0.42, 0.36, 0.3]},
+        {"frame": 2, "translate": [-0.3, 0.36, 0.45]}]}})";
+    expectChangeEqualsFreshSession("settings-stream",
+                                   {.common = {"--gi", "stream", "--animation", animation.string()},
+                                    .before = {"--stream-window", "4"},
+                                    .command = {"stream_window", "6", "direct_samples", "2"},
+                                    .after = {"--stream-window", "6", "--direct-samples", "2"}});
+    fs::remove_all(animation.parent_path());
+}
+
 // Another GI mode: the clients switch methods at the same frame, without loading the scene
 // again, and light as a session started in that mode there would.
 TEST(Settings, SwitchingFromIgiToPhotonMappingEqualsASessionStartedInItAtThatFrame) {

@@ -26,12 +26,13 @@ PhotonBatch shootPhotonBatch(const LightingSetBuilder& builder,
 }
 
 std::shared_ptr<const PhotonStream> PhotonStream::first(
-    std::shared_ptr<const std::vector<SurfaceLightSite>> sites, std::uint32_t epoch, int window,
+    std::shared_ptr<const std::vector<SurfaceLightSite>> sites, std::uint32_t epoch,
+    std::uint32_t firstFrame, int window,
     const std::function<PhotonBatch(std::uint32_t index)>& shoot) {
     auto s = std::make_shared<PhotonStream>();
     s->sites_ = std::move(sites);
     s->epoch_ = epoch;
-    const std::uint32_t last = batchIndex(epoch);
+    const std::uint32_t last = batchIndex(firstFrame);
     for (int i = window - 1; i >= 0; --i)
         s->batches_.push_back(std::make_shared<const PhotonBatch>(shoot(last - std::uint32_t(i))));
     return s;

@@ -36,23 +36,28 @@ PhotonBatch shootPhotonBatch(const LightingSetBuilder& builder,
 /// VSLs move with it and keep the power deposited on them, until the batches that brought it
 /// leave the pool.
 ///
-/// Distribution independence: batch i is shot on the scene of epoch i and keyed by i alone,
-/// so every client that saw the same epochs holds the same pool. The first epoch a client
-/// has fills the whole pool with batches shot on that epoch's scene.
+/// Distribution independence: an epoch's batch is shot on its scene and keyed by the frame the
+/// epoch begins at alone, so every client that saw the same epochs holds the same pool. The
+/// frame, not the epoch's number: a live session whose settings change at frame F (where every
+/// client starts its pool afresh) then holds the pool a session started at F with those
+/// settings holds, whatever epochs came before. The first epoch a client has fills the whole
+/// pool with batches shot on that epoch's scene.
 class PhotonStream final : public LightingHistory {
   public:
-    /// The pool of a client's first epoch.
+    /// The pool of a client's first epoch, `epoch`, which begins at frame `firstFrame`.
     static std::shared_ptr<const PhotonStream> first(
-        std::shared_ptr<const std::vector<SurfaceLightSite>> sites, std::uint32_t epoch, int window,
+        std::shared_ptr<const std::vector<SurfaceLightSite>> sites, std::uint32_t epoch,
+        std::uint32_t firstFrame, int window,
         const std::function<PhotonBatch(std::uint32_t index)>& shoot);
     /// The pool of the epoch after this one's, with `batch` (shot on that epoch's scene) in.
     std::shared_ptr<const PhotonStream> next(std::uint32_t epoch, int window,
                                              std::shared_ptr<const PhotonBatch> batch) const;
 
-    /// The index of the batch epoch `epoch` adds (never 0 ... window - 1 of the first epoch's
-    /// fill collide with a later epoch's).
-    static std::uint32_t batchIndex(std::uint32_t epoch) {
-        return epoch + std::uint32_t(kMaxStreamWindow);
+    /// The index of the batch of the epoch that begins at frame `firstFrame` (never 0: the
+    /// window - 1 batches before it in a first epoch's fill never collide with a later
+    /// epoch's, which begins at a later frame).
+    static std::uint32_t batchIndex(std::uint32_t firstFrame) {
+        return firstFrame + std::uint32_t(kMaxStreamWindow);
     }
 
     const std::vector<SurfaceLightSite>& sites() const { return *sites_; }

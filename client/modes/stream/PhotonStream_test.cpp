@@ -117,8 +117,9 @@ PhotonBatch batchOf(float value) {
 
 TEST(PhotonStream, ThePoolHoldsTheLastWindowOfBatchesOldestOut) {
     const auto first = PhotonStream::first(
-        twoSites(), 5, 3, [](std::uint32_t index) { return batchOf(float(index)); });
-    const float b = float(PhotonStream::batchIndex(5));
+        twoSites(), 5, 40, 3, [](std::uint32_t index) { return batchOf(float(index)); });
+    EXPECT_EQ(first->epoch(), 5u);
+    const float b = float(PhotonStream::batchIndex(40));  // keyed by the frame, not the epoch
     std::vector<glm::vec3> front, back;
     first->power(front, back);
     EXPECT_EQ(first->batches(), 3u);

@@ -28,11 +28,12 @@ StreamLighting::StreamLighting(const LightingSetBuilder& builder, const Traceabl
                                 std::uint32_t(settings.streamPhotons), shootRays_);
     };
     if (previous)
-        stream_ = previous->next(
-            context.epoch, settings.streamWindow,
-            std::make_shared<const PhotonBatch>(shoot(PhotonStream::batchIndex(context.epoch))));
+        stream_ = previous->next(context.epoch, settings.streamWindow,
+                                 std::make_shared<const PhotonBatch>(
+                                     shoot(PhotonStream::batchIndex(context.firstFrame))));
     else
-        stream_ = PhotonStream::first(sites, context.epoch, settings.streamWindow, shoot);
+        stream_ = PhotonStream::first(sites, context.epoch, context.firstFrame,
+                                      settings.streamWindow, shoot);
 
     // The VSLs as VPLs: one per lit side, at the VSL's place in this epoch.
     std::vector<glm::vec3> front, back;
