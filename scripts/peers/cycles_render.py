@@ -170,8 +170,9 @@ def _add_mesh(name, positions, triangles, normals, material, uvs=None):
 
 def _import_gltf(model):
     """A glTF mesh of the scene file through Blender's own importer (its lights in the
-    importer's "Standard" mode where the importer has the option (3.6 on; Debian's 3.4 has
-    not), which converts lux and candela as we do: docs/SCENE_FORMAT.md),
+    importer's "Standard" lighting mode, its default, asked for by name: `convert_lighting_mode`
+    in Debian's 3.4, `export_import_convert_lighting_mode` in later versions; it converts lux
+    and candela as we do: docs/SCENE_FORMAT.md, checked by scripts/gltf_light_units.sh),
     then put where our scene puts it: the importer turns glTF's Y-up into Blender's Z-up,
     (x, y, z) -> (x, -z, y), which this script's scene (ours, unchanged) does not; so the
     imported roots hang under an empty of matrix (our transform) x (that turn undone).
@@ -187,8 +188,9 @@ def _import_gltf(model):
     before = set(bpy.data.objects)
     options = {}
     props = bpy.ops.import_scene.gltf.get_rna_type().properties
-    if "export_import_convert_lighting_mode" in props.keys():  # Blender 3.6 on; 3.4 lacks it
-        options["export_import_convert_lighting_mode"] = "SPEC"
+    for name in ("convert_lighting_mode", "export_import_convert_lighting_mode"):
+        if name in props.keys():
+            options[name] = "SPEC"
     bpy.ops.import_scene.gltf(filepath=model["file"], **options)
     new = [o for o in bpy.data.objects if o not in before]
     root = bpy.data.objects.new(model["name"] + "_root", None)
@@ -198,6 +200,13 @@ def _import_gltf(model):
         if o.parent is None:
             o.parent = root
     for o in new:
+        # glTF's punctual lights are points and a delta sun; Blender's importer leaves new
+        # lights' default size (a 0.25 m sphere, which lights a floor 1.4 m below 3 % less).
+        if o.type == "LIGHT":
+            if o.data.type == "SUN":
+                o.data.angle = 0.0
+            else:
+                o.data.shadow_soft_size = 0.0
         for slot in getattr(o, "material_slots", []):
             if slot.material and slot.material.use_nodes:
                 for node in slot.material.node_tree.nodes:
