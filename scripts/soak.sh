@@ -70,11 +70,13 @@ trap cleanup EXIT
 head -c 32 /dev/urandom | base64 > "$work/secret"
 
 # The animation: the mirror box turns during frames 400 k .. 400 k + 100, for as many frames as a
-# session of this length can render at 1,000 frames per second.
+# session of this length can render at 1,000 frames per second, or up to the last frame an
+# animation key may name (1,000,000; a run of 17 minutes or more reaches it and then holds
+# the box still).
 /usr/bin/python3 - "$work/soak.anim.json" "$minutes" <<'EOF'
 import json, sys
 keys, frame, angle = [], 0, -32
-while frame < float(sys.argv[2]) * 60 * 1000:
+while frame + 100 <= min(float(sys.argv[2]) * 60 * 1000, 1000000):
     keys += [{"frame": frame, "rotate_deg": [0, angle, 0]},
              {"frame": frame + 100, "rotate_deg": [0, angle + 90, 0]}]
     frame, angle = frame + 400, angle + 90
