@@ -471,6 +471,20 @@ async function checkLoopbackSession(browser) {
   check(kept.settings.indirect_vpls === 40, "the refused value changes nothing",
         JSON.stringify(kept.settings));
 
+  // The overlay gives the accumulated image's estimated relMSE, as the master's status does,
+  // and, once there is a target, the target.
+  await control(m.controlPort, {cmd: "settings", target_error: 1e-7});
+  const errorLine = await waitFor("the overlay's error line", async () => {
+    const text = await page.eval(`document.getElementById("overlay").textContent`);
+    const match = /est\. relMSE ([0-9.e+-]+) +target 1e-7/.exec(text);
+    return match ? {text, estimate: Number(match[1])} : null;
+  }, 20).catch(() => null);
+  const statusNow = await control(m.controlPort, {cmd: "status"});
+  const ratio = errorLine ? errorLine.estimate / statusNow.estimated_rel_mse : NaN;
+  check(errorLine !== null && ratio > 0.5 && ratio < 2,
+        "the overlay shows the estimated relMSE (as the master's status has it) and the target",
+        errorLine ? `${errorLine.estimate} against the status's ${statusNow.estimated_rel_mse}` : "no error line");
+
   // Exposure and the save button go through the same commands.
   const saved = await page.eval(`igiView.send({cmd: "snapshot"})`);
   check(saved.ok && fs.existsSync(saved.path), "the save command writes an EXR on the master",
