@@ -180,16 +180,23 @@ TEST(Settings, AChangeInIgiEqualsASessionStartedWithTheNewSettingsAtThatFrame) {
          .after = {"--indirect-vpls", "40", "--direct-samples", "2", "--light-sampling", "power"}});
 }
 
+// An animation (in a scratch folder named `name`) in which the glass ball jumps at frame 2: a
+// new epoch, whose lighting a stateful mode carries on, before the settings change.
+fs::path ballJumpingAtFrame2(const std::string& name) {
+    const fs::path animation = scratchDir(name) / "jump.json";
+    std::ofstream(animation) << R"({"objects": {"glass_ball": [
+        {"frame": 0, "translate": [0.42, 0.36, 0.3]},
+        {"frame": 1, "translate": [0.42, 0.36, 0.3]},
+        {"frame": 2, "translate": [-0.3, 0.36, 0.45]}]}})";
+    return animation;
+}
+
 // Selective photon tracing keeps its photon groups across epochs: at new settings every client
 // starts them anew, as a session started there does. The glass ball jumps at frame 2, and with
 // one group traced again per frame most groups still hold the light of before when the
 // settings change: a client that kept them would light the frame differently.
 TEST(Settings, AChangeInSelectivePhotonTracingEqualsASessionStartedWithItAtThatFrame) {
-    const fs::path animation = scratchDir("settings-spt-animation") / "jump.json";
-    std::ofstream(animation) << R"({"objects": {"glass_ball": [
-        {"frame": 0, "translate": [0.42, 0.36, 0.3]},
-        {"frame": 1, "translate": [0.42, 0.36, 0.3]},
-        {"frame": 2, "translate": [-0.3, 0.36, 0.45]}]}})";
+    const fs::path animation = ballJumpingAtFrame2("settings-spt-animation");
     expectChangeEqualsFreshSession("settings-spt",
                                    {.common = {"--gi", "spt", "--animation", animation.string()},
                                     .before = {"--spt-budget", "1"},
@@ -202,11 +209,7 @@ TEST(Settings, AChangeInSelectivePhotonTracingEqualsASessionStartedWithItAtThatF
 // their epoch begins at, so the pool is a fresh session's there. The glass ball moves at frame 2
 // (a new epoch and batch before the change).
 TEST(Settings, AChangeInPhotonStreamingEqualsASessionStartedWithItAtThatFrame) {
-    const fs::path animation = scratchDir("settings-stream-animation") / "move.json";
-    std::ofstream(animation) << R"({"objects": {"glass_ball": [
-        {"frame": 0, "translate": [0.42, 0.36, 0.3]},
-        {"frame": 1, "translate": [0.42, 0.36, 0.3]},
-        {"frame": 2, "translate": [-0.3, 0.36, 0.45]}]}})";
+    const fs::path animation = ballJumpingAtFrame2("settings-stream-animation");
     expectChangeEqualsFreshSession("settings-stream",
                                    {.common = {"--gi", "stream", "--animation", animation.string()},
                                     .before = {"--stream-window", "4"},
