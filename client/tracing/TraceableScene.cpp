@@ -115,10 +115,11 @@ TraceableScene::TraceableScene(const SceneGeometry& geometry, const SceneState& 
         rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
     }
     for (std::size_t i = 0; i < scene.meshes.size(); ++i)
-        addMesh(scene.meshes[i], geometry.mesh(i), state.transforms[i].matrix(), -1);
+        addMesh(geometryOf(scene, i), geometry.mesh(i), meshToWorld(scene, state.transforms, i),
+                scene.meshes[i].material, scene.meshes[i].instanced);
     for (std::size_t i = 0; i < state.quadLights.size(); ++i)
         addMesh(geometry.unitQuad(), geometry.unitQuadScene(), quadLightMatrix(state.quadLights[i]),
-                int(quadLightMaterialBase_ + i));
+                int(quadLightMaterialBase_ + i), false);
     if (layout_ == SceneLayout::Instanced)
         rtcCommitScene(top_);
     else
@@ -159,18 +160,23 @@ TraceableScene::~TraceableScene() {
 }
 
 void TraceableScene::addMesh(const Mesh& mesh, RTCScene scene, const glm::mat4& objectToWorld,
-                             int material) {
+                             int material, bool instanced) {
     MeshData data;
     data.mesh = &mesh;
     data.objectToWorld = objectToWorld;
     data.normalToWorld = glm::transpose(glm::inverse(glm::mat3(objectToWorld)));
     data.material = material;
+    data.instanced = instanced;
     const auto id = std::uint32_t(meshes_.size());
     meshes_.push_back(data);  // worldTriangle reads it
     MeshData& added = meshes_.back();
-    added.faceNormals.resize(mesh.triangles.size());
-    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
-        added.faceNormals[t] = faceNormalOf(worldTriangle(id, t));
+    // An instance's face normals are computed at each hit: stored, they would be a world-space
+    // copy of its geometry per instance, what instancing saves.
+    if (!instanced) {
+        added.faceNormals.resize(mesh.triangles.size());
+        for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+            added.faceNormals[t] = faceNormalOf(worldTriangle(id, t));
+    }
     if (scene) {
         // Flat: the geometry's own scene has it already, under the same ID.
         if (layout_ == SceneLayout::Instanced)
@@ -301,17 +307,19 @@ TraceableScene::WorldTriangle TraceableScene::worldTriangle(std::uint32_t mesh,
 
 void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, std::uint32_t prim,
                                       float u, float v, float distance, SurfacePoint& hit) const {
-    // Flat, the geometry ID is the mesh's; instanced, the instance's ID is.
-    std::uint32_t meshIndex = layout_ == SceneLayout::Flat ? geom : inst;
+    // Through an instance (every mesh in the instanced layout, the instanced meshes in the flat
+    // one), the instance's ID is the mesh's; else the geometry ID is.
+    const bool viaInstance = inst != RTC_INVALID_GEOMETRY_ID;
+    std::uint32_t meshIndex = viaInstance ? inst : geom;
     if (geometry_.anyCutOuts()) {
         // Cut-out triangles are geometry of their own (SceneGeometry): flat, after the meshes
-        // and quad lights; instanced, kCutOutGeometry in the mesh's scene. Either way the
-        // primitive is an index into that part's triangles.
+        // and quad lights; through an instance, kCutOutGeometry in the mesh's scene. Either
+        // way the primitive is an index into that part's triangles.
         bool cutOut = false;
-        if (layout_ == SceneLayout::Flat && geom >= cutOutBase_) {
+        if (!viaInstance && geom >= cutOutBase_) {
             meshIndex = geometry_.cutOutMeshes()[geom - cutOutBase_];
             cutOut = true;
-        } else if (layout_ == SceneLayout::Instanced) {
+        } else if (viaInstance) {
             cutOut = geom == SceneGeometry::kCutOutGeometry;
         }
         if (geometry_.hasCutOuts(meshIndex)) prim = geometry_.meshTriangle(meshIndex, cutOut, prim);
@@ -325,7 +333,8 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
     const glm::vec3 pObject =
         w * mesh.positions[t.x] + u * mesh.positions[t.y] + v * mesh.positions[t.z];
     hit.position = transformPoint(m.objectToWorld, pObject);
-    const glm::vec3 ng = m.faceNormals[prim];
+    const glm::vec3 ng =
+        m.instanced ? faceNormalOf(worldTriangle(meshIndex, prim)) : m.faceNormals[prim];
     hit.geometricNormal = ng;
 
     hit.shadingNormal = ng;

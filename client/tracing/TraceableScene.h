@@ -146,7 +146,8 @@ class TraceableScene {
         const Mesh* mesh = nullptr;
         glm::mat4 objectToWorld{1.0f};
         glm::mat3 normalToWorld{1.0f};
-        int material = -1;  ///< every triangle's material, or -1: the mesh's own per triangle
+        int material = -1;       ///< every triangle's material, or -1: the mesh's own per triangle
+        bool instanced = false;  ///< Mesh::instanced: faceNormals is empty
         /// Per triangle, the unit geometric normal in world space (0, 0, 1 for a degenerate
         /// one), as fillSurfacePoint gives it: computed once rather than at every hit, from the
         /// world-space vertices (three transforms, a square root and a division).
@@ -157,7 +158,8 @@ class TraceableScene {
 
     /// Adds a mesh's data (and in the instanced layout, its instance) as the next mesh index;
     /// `scene` is its object-space Embree scene, null for a mesh without triangles.
-    void addMesh(const Mesh& mesh, RTCScene scene, const glm::mat4& objectToWorld, int material);
+    void addMesh(const Mesh& mesh, RTCScene scene, const glm::mat4& objectToWorld, int material,
+                 bool instanced);
     std::uint32_t materialOf(const MeshData& m, std::uint32_t triangle) const {
         return m.material >= 0 ? std::uint32_t(m.material) : m.mesh->materialIds[triangle];
     }
