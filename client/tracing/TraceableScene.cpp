@@ -114,9 +114,21 @@ TraceableScene::TraceableScene(const SceneGeometry& geometry, const SceneState& 
         top_ = rtcNewScene(geometry.device().get());
         rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
     }
-    for (std::size_t i = 0; i < scene.meshes.size(); ++i)
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         addMesh(geometryOf(scene, i), geometry.mesh(i), meshToWorld(scene, state.transforms, i),
                 scene.meshes[i].material, scene.meshes[i].instanced);
+        // A glTF file's part: its vertex normals and tangents through its node matrix one by
+        // one, normalized, as the loader flattens them; then its object's transform.
+        if (scene.meshes[i].partOf >= 0) {
+            MeshData& m = meshes_.back();
+            const glm::mat4 object = state.transforms[objectOf(scene, i)].matrix();
+            m.perVertex = true;
+            m.localLinear = glm::mat3(scene.meshes[i].local);
+            m.localNormal = glm::transpose(glm::inverse(m.localLinear));
+            m.objectLinear = glm::mat3(object);
+            m.normalToWorld = glm::transpose(glm::inverse(m.objectLinear));
+        }
+    }
     for (std::size_t i = 0; i < state.quadLights.size(); ++i)
         addMesh(geometry.unitQuad(), geometry.unitQuadScene(), quadLightMatrix(state.quadLights[i]),
                 int(quadLightMaterialBase_ + i), false);
@@ -341,7 +353,9 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
     glm::vec3 interpolated = ng;  // unit, not yet turned to ng's side: a normal map's frame
     if (!mesh.normals.empty()) {
         const glm::vec3 nObject =
-            w * mesh.normals[t.x] + u * mesh.normals[t.y] + v * mesh.normals[t.z];
+            m.perVertex
+                ? w * m.vertexNormal(t.x) + u * m.vertexNormal(t.y) + v * m.vertexNormal(t.z)
+                : w * mesh.normals[t.x] + u * mesh.normals[t.y] + v * mesh.normals[t.z];
         const glm::vec3 ns = m.normalToWorld * nObject;
         const float nsLen = glm::length(ns);
         if (nsLen > 0 && std::isfinite(nsLen)) {
@@ -383,12 +397,13 @@ void TraceableScene::applyNormalMap(const MeshData& m, glm::uvec3 t, float u, fl
                                     SurfacePoint& hit) const {
     const Mesh& mesh = *m.mesh;
     const float w = 1.0f - u - v;
-    const glm::mat3 toWorld(m.objectToWorld);
+    const glm::mat3 toWorld = m.perVertex ? m.objectLinear : glm::mat3(m.objectToWorld);
     normalmap::TangentFrame frame;
     bool framed = false;
     // The vertices' TANGENT when all three have one ((0, 0, 0, 0) where the file gave none).
     if (!mesh.tangents.empty()) {
-        const glm::vec4 ta = mesh.tangents[t.x], tb = mesh.tangents[t.y], tc = mesh.tangents[t.z];
+        const glm::vec4 ta = m.vertexTangent(t.x), tb = m.vertexTangent(t.y),
+                        tc = m.vertexTangent(t.z);
         if (ta.w != 0 && tb.w != 0 && tc.w != 0) {
             const glm::vec4 ti = w * ta + u * tb + v * tc;
             // A mirroring placement turns the bitangent's sign, as the loader's matrix does.
