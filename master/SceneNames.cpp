@@ -40,10 +40,19 @@ std::vector<std::uint32_t> indicesOf(const Items& items, const std::string& name
     return out;
 }
 
+// The meshes that are objects (scene-file entries), not parts of one (instances of a glTF
+// file's shared primitives, which carry their object's name and follow its transform).
+std::vector<std::uint32_t> objectsNamed(const std::vector<Mesh>& meshes, const std::string& name) {
+    std::vector<std::uint32_t> out;
+    for (std::uint32_t i : indicesOf(meshes, name))
+        if (meshes[i].partOf < 0) out.push_back(i);
+    return out;
+}
+
 }  // namespace
 
 std::uint32_t SceneNames::mesh(const std::string& name, const JsonNode& where) const {
-    const std::vector<std::uint32_t> found = indicesOf(scene_.meshes, name);
+    const std::vector<std::uint32_t> found = objectsNamed(scene_.meshes, name);
     if (found.empty()) {
         where.fail("no mesh named '" + name +
                    "' (the scene's meshes: " + listNames(namesOf(scene_.meshes)) + ")");

@@ -40,17 +40,18 @@ std::optional<PickHit> pickObject(const Scene& scene, const SceneState& state, f
     std::optional<PickHit> hit;
     float best = std::numeric_limits<float>::infinity();
     for (std::uint32_t m = 0; m < scene.meshes.size(); ++m) {
-        const Mesh& mesh = scene.meshes[m];
+        const Mesh& mesh = geometryOf(scene, m);
         // The ray goes into the mesh's own space (one inverse per mesh) rather than every vertex
         // into the world's; an affine map keeps the ray parameter t, so distances compare.
-        const glm::mat4 toObject = glm::inverse(state.transforms.at(m).matrix());
+        const glm::mat4 toObject = glm::inverse(meshToWorld(scene, state.transforms, m));
         const glm::vec3 o = glm::vec3(toObject * glm::vec4(origin, 1.0f));
         const glm::vec3 d = glm::mat3(toObject) * direction;
         const float before = best;
         for (const glm::uvec3& t : mesh.triangles)
             best = intersect(o, d, mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z],
                              best);
-        if (best < before) hit = PickHit{m, origin + best * direction, best};
+        // An instance's hit picks the object it is a part of.
+        if (best < before) hit = PickHit{objectOf(scene, m), origin + best * direction, best};
     }
     return hit;
 }

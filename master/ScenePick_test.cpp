@@ -57,5 +57,33 @@ TEST(ScenePick, SeesTheMeshesWhereTheStatePutsThem) {
     EXPECT_EQ(side->mesh, 1u);
 }
 
+// An instance of a glTF file's shared primitive (a part of the file's object, placed by its node
+// matrix after the object's transform) is picked where it stands, as its object: what the pick
+// names is what `igi-ctl object` moves.
+TEST(ScenePick, AnInstancePicksItsObject) {
+    Scene s = scene();
+    Mesh part;
+    part.name = "wall";
+    part.geometryOf = 1;  // the near square's triangles
+    part.partOf = 0;      // a part of the wall's object
+    part.instanced = true;
+    part.local = glm::mat4(1.0f);
+    part.local[3] = glm::vec4(0.4f, 0, 0.5f, 1);  // in the wall's space (scaled by 4)
+    s.meshes[1].instanced = true;
+    s.meshes.push_back(part);
+    SceneState state = SceneState::of(s);
+    // At the wall's scale, the part covers x in [-2.4, 5.6] at z = 2: the ray at x = 130 meets it.
+    const auto side = pickObject(s, state, 130, 50);
+    ASSERT_TRUE(side);
+    EXPECT_EQ(side->mesh, 0u);
+    EXPECT_NEAR(side->point.z, 2.0f, 1e-4f);
+    // Moved with its object.
+    state.transforms[0].translate = {0, 0, -1};
+    const auto moved = pickObject(s, state, 130, 50);
+    ASSERT_TRUE(moved);
+    EXPECT_EQ(moved->mesh, 0u);
+    EXPECT_NEAR(moved->point.z, 1.0f, 1e-4f);
+}
+
 }  // namespace
 }  // namespace igi

@@ -184,6 +184,7 @@ nlohmann::json SessionControl::sceneJson() const {
     const SceneState& state = timeline_.controlled();
     nlohmann::json objects = nlohmann::json::array();
     for (std::size_t m = 0; m < scene_.meshes.size(); ++m) {
+        if (scene_.meshes[m].partOf >= 0) continue;  // an instance: its object moves it
         const Transform& t = state.transforms[m];
         objects.push_back({{"name", scene_.meshes[m].name},
                            {"translate", vec3Json(t.translate)},

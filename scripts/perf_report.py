@@ -864,6 +864,21 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
     w("<!-- END GENERATED network -->")
     w("")
 
+    w("## 9. Instances: a mesh placed many times, built once")
+    w("")
+    w("`scripts/bench_instancing.sh BASE_BIN NEW_BIN` (its own script, about a minute) runs a "
+      "master and one client process on Khronos' MetalRoughSpheresNoTextures (98 nodes placing "
+      "one sphere, each with its own material) with a build from before instancing, which "
+      "flattens the nodes into one mesh of 1,040,409 triangles, and with this one, which builds "
+      "the sphere's BVH once and places it by 98 Embree instances (docs/SCENE_FORMAT.md, "
+      "\"Instances\"), alternately, and compares the client's peak memory and the scene build "
+      "time it reports.")
+    w("")
+    w("<!-- BEGIN GENERATED instancing -->")
+    w(generated_block(doc, "instancing") or "Not measured yet: run scripts/bench_instancing.sh.")
+    w("<!-- END GENERATED instancing -->")
+    w("")
+
     w("## What is not measured here")
     w("")
     w("- Real network: sections 1-7 run on loopback on one machine. Section 8 limits link rates "

@@ -38,10 +38,10 @@ float areaOf(const Corners& c) {
 template <typename F>
 void forEachSiteTriangle(const Scene& scene, const SceneState& state, F&& f) {
     for (std::uint32_t i = 0; i < scene.meshes.size(); ++i) {
-        const Mesh& mesh = scene.meshes[i];
-        const glm::mat4 m = state.transforms[i].matrix();
+        const Mesh& mesh = geometryOf(scene, i);
+        const glm::mat4 m = meshToWorld(scene, state.transforms, i);
         for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-            if (!carriesSites(state.materials[mesh.materialIds[t]])) continue;
+            if (!carriesSites(state.materials[materialOf(scene, i, t)])) continue;
             const float a = areaOf(cornersOf(mesh, m, t));
             if (a > 0 && std::isfinite(a)) f(i, t, a);
         }

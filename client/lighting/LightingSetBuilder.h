@@ -24,6 +24,7 @@ class LightingSetBuilder {
   public:
     LightingSetBuilder(const TraceableScene& scene, const Lights& lights,
                        const RenderSettings& settings);
+    const TraceableScene& scene() const { return scene_; }
 
     /// The set of k = setIndex in `frame`, the frame's place in its accumulation being
     /// `accumulation` (TileAssign::accumulation: it shrinks the progressive radii).

@@ -72,10 +72,10 @@ std::vector<SurfaceLightSite> placeSurfaceLights(const Scene& scene, const Scene
     std::vector<std::pair<std::uint32_t, std::uint32_t>> triangles;  // (mesh, triangle)
     std::vector<float> areas;
     for (std::uint32_t i = 0; i < scene.meshes.size(); ++i) {
-        const Mesh& mesh = scene.meshes[i];
-        const glm::mat4 m = state.transforms[i].matrix();
+        const Mesh& mesh = geometryOf(scene, i);
+        const glm::mat4 m = meshToWorld(scene, state.transforms, i);
         for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-            if (!carriesSurfaceLights(state.materials[mesh.materialIds[t]])) continue;
+            if (!carriesSurfaceLights(state.materials[materialOf(scene, i, t)])) continue;
             const WorldTriangle w = worldTriangle(mesh, m, t);
             const float area = 0.5f * glm::length(glm::cross(w.p1 - w.p0, w.p2 - w.p0));
             if (!(area > 0) || !std::isfinite(area)) continue;
@@ -108,11 +108,13 @@ std::vector<SurfaceLightSite> placeSurfaceLights(const Scene& scene, const Scene
 std::vector<SurfaceLight> surfaceLightsIn(const Scene& scene, const SceneState& state,
                                           const std::vector<SurfaceLightSite>& sites) {
     std::vector<glm::mat4> matrices(scene.meshes.size());
-    for (std::size_t i = 0; i < matrices.size(); ++i) matrices[i] = state.transforms[i].matrix();
+    for (std::size_t i = 0; i < matrices.size(); ++i)
+        matrices[i] = meshToWorld(scene, state.transforms, i);
     std::vector<SurfaceLight> out(sites.size());
     for (std::size_t k = 0; k < sites.size(); ++k) {
         const SurfaceLightSite& s = sites[k];
-        const WorldTriangle w = worldTriangle(scene.meshes[s.mesh], matrices[s.mesh], s.triangle);
+        const WorldTriangle w =
+            worldTriangle(geometryOf(scene, s.mesh), matrices[s.mesh], s.triangle);
         out[k].position = (1.0f - s.b1 - s.b2) * w.p0 + s.b1 * w.p1 + s.b2 * w.p2;
         const glm::vec3 n = glm::cross(w.p1 - w.p0, w.p2 - w.p0);
         const float length = glm::length(n);

@@ -45,7 +45,8 @@ bool covers(const Material& m, float alpha, float random) {
 bool CutOutTriangles::hits(glm::vec3 origin, glm::vec3 direction, std::uint32_t prim, float u,
                            float v) const {
     const std::uint32_t t = triangles[prim];
-    const Material& m = (*materials)[mesh->materialIds[t]];
+    const Material& m =
+        (*materials)[material >= 0 ? std::uint32_t(material) : mesh->materialIds[t]];
     // The uv of the hit as TraceableScene::fillSurfacePoint computes it.
     glm::vec2 uv(u, v);
     if (!mesh->uvs.empty()) {

@@ -40,6 +40,7 @@ bool covers(const Material& m, float alpha, float random);
 struct CutOutTriangles {
     const Mesh* mesh = nullptr;
     std::uint32_t meshIndex = 0;
+    std::int32_t material = -1;  ///< every triangle's (Mesh::material), or -1: mesh->materialIds
     std::vector<std::uint32_t> triangles;              ///< Embree primitive -> the mesh's triangle
     const std::vector<Material>* materials = nullptr;  ///< the scene's, as loaded
     const std::vector<Texture>* textures = nullptr;

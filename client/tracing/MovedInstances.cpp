@@ -15,9 +15,13 @@ bool sameGeometry(const QuadLight& a, const QuadLight& b) {
 
 MovedInstances::MovedInstances(const SceneGeometry& geometry, const SceneState& before,
                                const SceneState& after) {
-    for (std::uint32_t i = 0; i < after.transforms.size() && i < before.transforms.size(); ++i)
-        if (!(before.transforms[i] == after.transforms[i]) && geometry.mesh(i))
+    // An instance of a glTF file's shared primitive moves with its object.
+    const Scene& scene = geometry.scene();
+    for (std::uint32_t i = 0; i < after.transforms.size() && i < before.transforms.size(); ++i) {
+        const std::uint32_t object = objectOf(scene, i);
+        if (!(before.transforms[object] == after.transforms[object]) && geometry.mesh(i))
             meshes_.push_back(i);
+    }
     for (std::uint32_t i = 0; i < after.quadLights.size() && i < before.quadLights.size(); ++i)
         if (!sameGeometry(before.quadLights[i], after.quadLights[i])) lights_.push_back(i);
     lightsMoved_ = lights_.size();
@@ -39,7 +43,7 @@ RTCScene MovedInstances::build(const SceneGeometry& geometry, const SceneState& 
     rtcSetSceneFlags(top, RTC_SCENE_FLAG_ROBUST);
     std::uint32_t id = 0;
     for (std::uint32_t i : meshes_) {
-        const glm::mat4 m = state.transforms[i].matrix();
+        const glm::mat4 m = meshToWorld(geometry.scene(), state.transforms, i);
         if (flat) {
             const std::uint32_t opaqueId = id++;
             geometry.attachWorldMesh(top, i, m, opaqueId, geometry.hasCutOuts(i) ? id++ : 0);

@@ -1,6 +1,8 @@
 #include "tracing/SceneGeometry.h"
 
+#include <map>
 #include <stdexcept>
+#include <utility>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -21,11 +23,34 @@ struct SceneGeometry::FlatScene {
 SceneGeometry::SceneGeometry(const EmbreeDevice& device, const Scene& scene)
     : device_(device), scene_(scene), environment_(scene.environment, scene.textures) {
     splitByCoverage();
+    // Instances of one geometry share its scene: one per geometry, or per geometry and
+    // material where the material cuts out (the split of its triangles depends on it).
+    std::map<std::pair<std::size_t, std::int32_t>, RTCScene> shared;
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-        const Mesh& mesh = scene.meshes[i];
-        meshes_.push_back(mesh.triangles.empty() ? nullptr : build(mesh, &parts_[i]));
+        const Mesh& mesh = geometryOf(scene, i);
         triangleCount_ += mesh.triangles.size();
+        if (mesh.triangles.empty()) {
+            meshes_.push_back(nullptr);
+            continue;
+        }
+        if (!scene.meshes[i].instanced) {
+            meshes_.push_back(build(mesh, &parts_[i]));
+            builtTriangles_ += mesh.triangles.size();
+            continue;
+        }
+        const std::size_t holder = &mesh - scene.meshes.data();
+        const std::pair key{holder, parts_[i].cutOut ? scene.meshes[i].material : -1};
+        auto it = shared.find(key);
+        if (it == shared.end()) {
+            it = shared.emplace(key, build(mesh, &parts_[i])).first;
+            builtTriangles_ += mesh.triangles.size();
+        } else {
+            rtcRetainScene(it->second);  // each slot of meshes_ holds a reference
+        }
+        meshes_.push_back(it->second);
+        anyInstanced_ = true;
     }
+    instancedScenes_ = shared.size();
     unitQuad_.name = "unit quad";
     unitQuad_.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     unitQuad_.triangles = {{0, 1, 2}, {0, 2, 3}};
@@ -93,11 +118,14 @@ void SceneGeometry::splitByCoverage() {
     parts_.resize(scene_.meshes.size());
     if (!any) return;  // every mesh as before: one geometry, primitive = triangle
     for (std::size_t i = 0; i < scene_.meshes.size(); ++i) {
-        const Mesh& mesh = scene_.meshes[i];
+        const Mesh& mesh = geometryOf(scene_, i);
+        const std::int32_t uniform = scene_.meshes[i].material;
         auto cutOut = std::make_unique<CutOutTriangles>();
         std::vector<std::uint32_t> opaque;
         for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-            const std::uint32_t material = t < mesh.materialIds.size() ? mesh.materialIds[t] : 0;
+            const std::uint32_t material = uniform >= 0                  ? std::uint32_t(uniform)
+                                           : t < mesh.materialIds.size() ? mesh.materialIds[t]
+                                                                         : 0;
             if (material < cutOutMaterial.size() && cutOutMaterial[material])
                 cutOut->triangles.push_back(t);
             else
@@ -106,11 +134,14 @@ void SceneGeometry::splitByCoverage() {
         if (cutOut->triangles.empty()) continue;
         cutOut->mesh = &mesh;
         cutOut->meshIndex = std::uint32_t(i);
+        cutOut->material = uniform;
         cutOut->materials = &scene_.materials;
         cutOut->textures = &scene_.textures;
         parts_[i].opaque = std::move(opaque);
         parts_[i].cutOut = std::move(cutOut);
-        cutOutMeshes_.push_back(std::uint32_t(i));
+        anyCutOuts_ = true;
+        // An instance's cut-out triangles are in its geometry's scene, not the flat one.
+        if (!scene_.meshes[i].instanced) cutOutMeshes_.push_back(std::uint32_t(i));
     }
 }
 
@@ -148,12 +179,16 @@ void SceneGeometry::attachWorldMesh(RTCScene scene, const Mesh& mesh,
 void SceneGeometry::attachWorldMesh(RTCScene scene, std::size_t mesh,
                                     const glm::mat4& objectToWorld, std::uint32_t id,
                                     std::uint32_t cutOutId) const {
+    if (scene_.meshes[mesh].instanced) {  // one BVH for all instances of its geometry
+        if (meshes_[mesh]) attachInstance(scene, meshes_[mesh], objectToWorld, id);
+        return;
+    }
     const Parts& parts = parts_[mesh];
     if (!parts.cutOut) {
         attachWorldMesh(scene, scene_.meshes[mesh], objectToWorld, id);
         return;
     }
-    const Mesh& m = scene_.meshes[mesh];
+    const Mesh& m = scene_.meshes[mesh];  // not an instance: its own geometry
     if (!parts.opaque.empty()) {
         RTCGeometry geom = newTriangles(device_.get(), m, &objectToWorld, &parts.opaque);
         rtcAttachGeometryByID(scene, geom, id);
@@ -176,9 +211,10 @@ void SceneGeometry::attachInstance(RTCScene scene, RTCScene object, const glm::m
     rtcReleaseGeometry(instance);
 }
 
-SceneGeometry::Placement SceneGeometry::placementOf(const SceneState& state) {
+SceneGeometry::Placement SceneGeometry::placementOf(const SceneState& state) const {
     Placement p;
-    for (const Transform& t : state.transforms) p.meshes.push_back(t.matrix());
+    for (std::size_t i = 0; i < state.transforms.size(); ++i)
+        p.meshes.push_back(meshToWorld(scene_, state.transforms, i));
     for (const QuadLight& q : state.quadLights)
         p.quadLights.push_back(TraceableScene::quadLightMatrix(q));
     return p;
@@ -208,7 +244,7 @@ RTCScene SceneGeometry::buildFlat(const Placement& placement, RTCBuildQuality qu
     for (std::size_t i = 0; i < scene_.meshes.size(); ++i)
         if (meshes_[i])
             attachWorldMesh(scene, i, placement.meshes[i], std::uint32_t(i),
-                            parts_[i].cutOut ? cutOutId++ : 0);
+                            parts_[i].cutOut && !scene_.meshes[i].instanced ? cutOutId++ : 0);
     for (std::size_t j = 0; j < placement.quadLights.size(); ++j)
         attachWorldMesh(scene, unitQuad_, placement.quadLights[j],
                         std::uint32_t(scene_.meshes.size() + j));

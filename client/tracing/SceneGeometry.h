@@ -19,7 +19,8 @@ namespace igi {
 /// How one version of a scene is handed to Embree.
 /// - Flat: every mesh and quad light in world space in one Embree scene, one BVH. A ray crosses
 ///   no instance: 1.4 to 1.9 times the shadow rays per second of the instanced layout on the
-///   Cornell scenes (docs/PERFORMANCE.md, section 1), the same hits up to rounding.
+///   Cornell scenes (docs/PERFORMANCE.md, section 1), the same hits up to rounding. Only
+///   geometry placed several times (Mesh::instanced) is an instance there too, of its one BVH.
 /// - Instanced: each mesh's own BVH (in object space) placed by an instance in a top-level
 ///   scene. A move costs a top-level commit only, whatever the meshes' size.
 /// A version is flat when its objects stand where the scene file put them (that BVH is built
@@ -51,7 +52,10 @@ class SceneGeometry {
     /// as loaded when unchanged, else made from it (EnvironmentMap::changedTo) and kept for
     /// the epochs that follow with the same environment. Safe from many threads.
     EnvironmentMap environmentFor(const Environment& environment) const;
-    /// The Embree scene of mesh i, or null for a mesh without triangles. A mesh with cut-out
+    /// The Embree scene of mesh i, or null for a mesh without triangles. The instances of one
+    /// geometry (Mesh::instanced) share one: flat scenes place it by an Embree instance, whose
+    /// hits report the mesh as instID[0] and the geometry below as in the instanced layout. A
+    /// mesh with cut-out
     /// triangles (materials with hasCutOuts) holds its opaque ones under geometry ID
     /// kOpaqueGeometry and the cut-out ones, with the filter functions, under kCutOutGeometry;
     /// any other mesh is one geometry of ID 0 as before.
@@ -61,9 +65,10 @@ class SceneGeometry {
 
     /// Whether any mesh has cut-out triangles (else every geometry ID is a mesh's, or a quad
     /// light's, and every primitive ID its triangle).
-    bool anyCutOuts() const { return !cutOutMeshes_.empty(); }
-    /// The meshes with cut-out triangles, ascending. In a flat scene of `quadLights` quad
-    /// lights, the cut-out triangles of cutOutMeshes()[r] are geometry ID meshes + quadLights + r.
+    bool anyCutOuts() const { return anyCutOuts_; }
+    /// The meshes with cut-out triangles that are not instances, ascending. In a flat scene of
+    /// `quadLights` quad lights, the cut-out triangles of cutOutMeshes()[r] are geometry ID
+    /// meshes + quadLights + r.
     const std::vector<std::uint32_t>& cutOutMeshes() const { return cutOutMeshes_; }
     bool hasCutOuts(std::size_t mesh) const {
         return mesh < parts_.size() && parts_[mesh].cutOut != nullptr;
@@ -77,8 +82,14 @@ class SceneGeometry {
     /// The unit square (0,0,0), (1,0,0), (1,1,0), (0,1,0) as two counter-clockwise triangles.
     const Mesh& unitQuad() const { return unitQuad_; }
     RTCScene unitQuadScene() const { return unitQuadScene_; }
-    /// Triangles of all meshes (quad lights not counted).
+    /// Triangles of all meshes (quad lights not counted), every instance counted.
     std::uint64_t triangleCount() const { return triangleCount_; }
+    /// Triangles in the meshes' own Embree scenes: an instanced geometry counted once.
+    std::uint64_t builtTriangleCount() const { return builtTriangles_; }
+    /// The Embree scenes shared by instances (one per instanced geometry).
+    std::size_t instancedSceneCount() const { return instancedScenes_; }
+    /// Whether some mesh is an instance (Mesh::instanced).
+    bool anyInstanced() const { return anyInstanced_; }
 
     /// The layout of a version in `state`: a function of the scene and the state only, so every
     /// client chooses the same.
@@ -88,7 +99,8 @@ class SceneGeometry {
     RTCScene flatScene(const SceneState& state) const;
 
     /// Adds `mesh` placed by objectToWorld to `scene` under geometry ID `id`: in world space
-    /// (flat) or as an instance of `object`, its object-space scene. MovedInstances adds moved
+    /// (flat) or as an instance of `object`, its object-space scene. An instanced mesh (Mesh::
+    /// instanced) is always an instance of its geometry's scene. MovedInstances adds moved
     /// objects in the same way as the version it stands for, so both find the same hits.
     void attachWorldMesh(RTCScene scene, const Mesh& mesh, const glm::mat4& objectToWorld,
                          std::uint32_t id) const;
@@ -114,7 +126,7 @@ class SceneGeometry {
 
     RTCScene build(const Mesh& mesh, const Parts* parts) const;
     void splitByCoverage();
-    static Placement placementOf(const SceneState& state);
+    Placement placementOf(const SceneState& state) const;
     RTCScene buildFlat(const Placement& placement, RTCBuildQuality quality) const;
 
     const EmbreeDevice& device_;
@@ -128,6 +140,10 @@ class SceneGeometry {
     Mesh unitQuad_;
     RTCScene unitQuadScene_ = nullptr;
     std::uint64_t triangleCount_ = 0;
+    std::uint64_t builtTriangles_ = 0;
+    std::size_t instancedScenes_ = 0;
+    bool anyInstanced_ = false;
+    bool anyCutOuts_ = false;
     Placement loaded_;  ///< as the scene file put them
 
     mutable std::mutex flatMutex_;

@@ -114,11 +114,24 @@ TraceableScene::TraceableScene(const SceneGeometry& geometry, const SceneState& 
         top_ = rtcNewScene(geometry.device().get());
         rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
     }
-    for (std::size_t i = 0; i < scene.meshes.size(); ++i)
-        addMesh(scene.meshes[i], geometry.mesh(i), state.transforms[i].matrix(), -1);
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        addMesh(geometryOf(scene, i), geometry.mesh(i), meshToWorld(scene, state.transforms, i),
+                scene.meshes[i].material, scene.meshes[i].instanced);
+        // A glTF file's part: its vertex normals and tangents through its node matrix one by
+        // one, normalized, as the loader flattens them; then its object's transform.
+        if (scene.meshes[i].partOf >= 0) {
+            MeshData& m = meshes_.back();
+            const glm::mat4 object = state.transforms[objectOf(scene, i)].matrix();
+            m.perVertex = true;
+            m.localLinear = glm::mat3(scene.meshes[i].local);
+            m.localNormal = glm::transpose(glm::inverse(m.localLinear));
+            m.objectLinear = glm::mat3(object);
+            m.normalToWorld = glm::transpose(glm::inverse(m.objectLinear));
+        }
+    }
     for (std::size_t i = 0; i < state.quadLights.size(); ++i)
         addMesh(geometry.unitQuad(), geometry.unitQuadScene(), quadLightMatrix(state.quadLights[i]),
-                int(quadLightMaterialBase_ + i));
+                int(quadLightMaterialBase_ + i), false);
     if (layout_ == SceneLayout::Instanced)
         rtcCommitScene(top_);
     else
@@ -159,18 +172,23 @@ TraceableScene::~TraceableScene() {
 }
 
 void TraceableScene::addMesh(const Mesh& mesh, RTCScene scene, const glm::mat4& objectToWorld,
-                             int material) {
+                             int material, bool instanced) {
     MeshData data;
     data.mesh = &mesh;
     data.objectToWorld = objectToWorld;
     data.normalToWorld = glm::transpose(glm::inverse(glm::mat3(objectToWorld)));
     data.material = material;
+    data.instanced = instanced;
     const auto id = std::uint32_t(meshes_.size());
     meshes_.push_back(data);  // worldTriangle reads it
     MeshData& added = meshes_.back();
-    added.faceNormals.resize(mesh.triangles.size());
-    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
-        added.faceNormals[t] = faceNormalOf(worldTriangle(id, t));
+    // An instance's face normals are computed at each hit: stored, they would be a world-space
+    // copy of its geometry per instance, what instancing saves.
+    if (!instanced) {
+        added.faceNormals.resize(mesh.triangles.size());
+        for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+            added.faceNormals[t] = faceNormalOf(worldTriangle(id, t));
+    }
     if (scene) {
         // Flat: the geometry's own scene has it already, under the same ID.
         if (layout_ == SceneLayout::Instanced)
@@ -301,17 +319,19 @@ TraceableScene::WorldTriangle TraceableScene::worldTriangle(std::uint32_t mesh,
 
 void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, std::uint32_t prim,
                                       float u, float v, float distance, SurfacePoint& hit) const {
-    // Flat, the geometry ID is the mesh's; instanced, the instance's ID is.
-    std::uint32_t meshIndex = layout_ == SceneLayout::Flat ? geom : inst;
+    // Through an instance (every mesh in the instanced layout, the instanced meshes in the flat
+    // one), the instance's ID is the mesh's; else the geometry ID is.
+    const bool viaInstance = inst != RTC_INVALID_GEOMETRY_ID;
+    std::uint32_t meshIndex = viaInstance ? inst : geom;
     if (geometry_.anyCutOuts()) {
         // Cut-out triangles are geometry of their own (SceneGeometry): flat, after the meshes
-        // and quad lights; instanced, kCutOutGeometry in the mesh's scene. Either way the
-        // primitive is an index into that part's triangles.
+        // and quad lights; through an instance, kCutOutGeometry in the mesh's scene. Either
+        // way the primitive is an index into that part's triangles.
         bool cutOut = false;
-        if (layout_ == SceneLayout::Flat && geom >= cutOutBase_) {
+        if (!viaInstance && geom >= cutOutBase_) {
             meshIndex = geometry_.cutOutMeshes()[geom - cutOutBase_];
             cutOut = true;
-        } else if (layout_ == SceneLayout::Instanced) {
+        } else if (viaInstance) {
             cutOut = geom == SceneGeometry::kCutOutGeometry;
         }
         if (geometry_.hasCutOuts(meshIndex)) prim = geometry_.meshTriangle(meshIndex, cutOut, prim);
@@ -325,14 +345,17 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
     const glm::vec3 pObject =
         w * mesh.positions[t.x] + u * mesh.positions[t.y] + v * mesh.positions[t.z];
     hit.position = transformPoint(m.objectToWorld, pObject);
-    const glm::vec3 ng = m.faceNormals[prim];
+    const glm::vec3 ng =
+        m.instanced ? faceNormalOf(worldTriangle(meshIndex, prim)) : m.faceNormals[prim];
     hit.geometricNormal = ng;
 
     hit.shadingNormal = ng;
     glm::vec3 interpolated = ng;  // unit, not yet turned to ng's side: a normal map's frame
     if (!mesh.normals.empty()) {
         const glm::vec3 nObject =
-            w * mesh.normals[t.x] + u * mesh.normals[t.y] + v * mesh.normals[t.z];
+            m.perVertex
+                ? w * m.vertexNormal(t.x) + u * m.vertexNormal(t.y) + v * m.vertexNormal(t.z)
+                : w * mesh.normals[t.x] + u * mesh.normals[t.y] + v * mesh.normals[t.z];
         const glm::vec3 ns = m.normalToWorld * nObject;
         const float nsLen = glm::length(ns);
         if (nsLen > 0 && std::isfinite(nsLen)) {
@@ -374,12 +397,13 @@ void TraceableScene::applyNormalMap(const MeshData& m, glm::uvec3 t, float u, fl
                                     SurfacePoint& hit) const {
     const Mesh& mesh = *m.mesh;
     const float w = 1.0f - u - v;
-    const glm::mat3 toWorld(m.objectToWorld);
+    const glm::mat3 toWorld = m.perVertex ? m.objectLinear : glm::mat3(m.objectToWorld);
     normalmap::TangentFrame frame;
     bool framed = false;
     // The vertices' TANGENT when all three have one ((0, 0, 0, 0) where the file gave none).
     if (!mesh.tangents.empty()) {
-        const glm::vec4 ta = mesh.tangents[t.x], tb = mesh.tangents[t.y], tc = mesh.tangents[t.z];
+        const glm::vec4 ta = m.vertexTangent(t.x), tb = m.vertexTangent(t.y),
+                        tc = m.vertexTangent(t.z);
         if (ta.w != 0 && tb.w != 0 && tc.w != 0) {
             const glm::vec4 ti = w * ta + u * tb + v * tc;
             // A mirroring placement turns the bitangent's sign, as the loader's matrix does.

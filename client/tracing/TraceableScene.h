@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include <embree3/rtcore.h>
+#include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 
@@ -146,7 +148,27 @@ class TraceableScene {
         const Mesh* mesh = nullptr;
         glm::mat4 objectToWorld{1.0f};
         glm::mat3 normalToWorld{1.0f};
-        int material = -1;  ///< every triangle's material, or -1: the mesh's own per triangle
+        int material = -1;       ///< every triangle's material, or -1: the mesh's own per triangle
+        bool instanced = false;  ///< Mesh::instanced: faceNormals is empty
+        /// A glTF file's part (Mesh::partOf): each vertex normal and tangent goes through the
+        /// node matrix (localNormal, localLinear) and is normalized, as the loader does when it
+        /// flattens; then through the object's (normalToWorld, objectLinear). Else objectToWorld
+        /// takes the interpolated ones.
+        bool perVertex = false;
+        glm::mat3 localLinear{1.0f}, localNormal{1.0f}, objectLinear{1.0f};
+        glm::vec3 vertexNormal(std::uint32_t i) const {
+            const glm::vec3 n = localNormal * mesh->normals[i];
+            const float len = glm::length(n);
+            return len > 0.0f && std::isfinite(len) ? n / len : n;
+        }
+        glm::vec4 vertexTangent(std::uint32_t i) const {
+            const glm::vec4 t = mesh->tangents[i];
+            if (!perVertex) return t;
+            const glm::vec3 d = localLinear * glm::vec3(t);
+            const float len = glm::length(d);
+            if (!(len > 0.0f) || !std::isfinite(len)) return glm::vec4(0.0f);
+            return glm::vec4(d / len, t.w);
+        }
         /// Per triangle, the unit geometric normal in world space (0, 0, 1 for a degenerate
         /// one), as fillSurfacePoint gives it: computed once rather than at every hit, from the
         /// world-space vertices (three transforms, a square root and a division).
@@ -157,7 +179,8 @@ class TraceableScene {
 
     /// Adds a mesh's data (and in the instanced layout, its instance) as the next mesh index;
     /// `scene` is its object-space Embree scene, null for a mesh without triangles.
-    void addMesh(const Mesh& mesh, RTCScene scene, const glm::mat4& objectToWorld, int material);
+    void addMesh(const Mesh& mesh, RTCScene scene, const glm::mat4& objectToWorld, int material,
+                 bool instanced);
     std::uint32_t materialOf(const MeshData& m, std::uint32_t triangle) const {
         return m.material >= 0 ? std::uint32_t(m.material) : m.mesh->materialIds[triangle];
     }

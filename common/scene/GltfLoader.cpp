@@ -1,12 +1,14 @@
 #include "scene/GltfLoader.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 
@@ -720,7 +722,8 @@ std::vector<glm::uvec3> assembleTriangles(int mode, const std::vector<std::uint3
 class GltfFlattener {
   public:
     GltfFlattener(const std::string& path, const tinygltf::Model& model, std::uint32_t materialBase,
-                  SceneAssets& assets, Mesh& mesh, std::vector<PunctualLight>& lights)
+                  SceneAssets& assets, Mesh& mesh, std::vector<PunctualLight>& lights,
+                  std::vector<GltfInstances>* instances)
         : path_(path),
           model_(model),
           accessors_(path, model, assets.limits().maxVertices),
@@ -728,6 +731,7 @@ class GltfFlattener {
           assets_(assets),
           mesh_(mesh),
           lights_(lights),
+          instances_(instances),
           visited_(model.nodes.size(), false) {
         for (const auto& m : model.meshes) {
             for (const auto& p : m.primitives) {
@@ -739,8 +743,12 @@ class GltfFlattener {
         }
     }
 
+    // The nodes' meshes are placed after the whole tree is read, so that a primitive placed by
+    // several nodes is known as such at its first placement.
     void run() {
         for (int root : rootNodes()) visit(root, glm::dmat4(1.0), 0);
+        if (instances_) countPlacements();
+        for (const auto& [meshIndex, world] : placements_) addMesh(meshIndex, world);
     }
 
   private:
@@ -779,7 +787,7 @@ class GltfFlattener {
         visited_[index] = true;
         const tinygltf::Node& node = model_.nodes[index];
         const glm::dmat4 world = parent * localMatrix(node);
-        if (node.mesh >= 0) addMesh(node.mesh, world);
+        if (node.mesh >= 0) placements_.emplace_back(node.mesh, world);
         addLight(node, world, where);
         for (int child : node.children) visit(child, world, depth + 1);
     }
@@ -837,10 +845,78 @@ class GltfFlattener {
         }
         const auto& primitives = model_.meshes[meshIndex].primitives;
         for (std::size_t p = 0; p < primitives.size(); ++p) {
-            addPrimitive(
-                primitives[p], world,
-                "/meshes/" + std::to_string(meshIndex) + "/primitives/" + std::to_string(p));
+            const std::string where =
+                "/meshes/" + std::to_string(meshIndex) + "/primitives/" + std::to_string(p);
+            auto shared = sharedIndex_.find(primitiveKey(primitives[p]));
+            if (instanceable(primitives[p], world) && shared != sharedIndex_.end()) {
+                addInstance(primitives[p], world, where, shared->second);
+            } else {
+                addPrimitive(primitives[p], world, where, mesh_);
+            }
         }
+    }
+
+    // What makes two primitives the same geometry: their mode and accessors.
+    using PrimitiveKey = std::array<int, 7>;
+    PrimitiveKey primitiveKey(const tinygltf::Primitive& prim) const {
+        return {prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode,
+                attribute(prim, "POSITION"),
+                nonEmpty(attribute(prim, "NORMAL")),
+                nonEmpty(attribute(prim, "TEXCOORD_0")),
+                nonEmpty(attribute(prim, "TANGENT")),
+                nonEmpty(attribute(prim, "COLOR_0")),
+                prim.indices};
+    }
+
+    // Whether a placement of `prim` may be an instance: a triangle primitive of an opaque
+    // material (cut-outs stay per triangle in the flattened mesh) placed by a matrix that does
+    // not mirror (the loader turns a mirrored primitive's triangles; an instance would not).
+    bool instanceable(const tinygltf::Primitive& prim, const glm::dmat4& world) const {
+        const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN)
+            return false;
+        if (attribute(prim, "POSITION") < 0) return false;
+        if (prim.material >= 0 && prim.material < static_cast<int>(model_.materials.size())) {
+            const std::string& alpha = model_.materials[prim.material].alphaMode;
+            if (!alpha.empty() && alpha != "OPAQUE") return false;
+        }
+        return glm::determinant(glm::dmat3(world)) > 0.0;
+    }
+
+    // The primitives placed (instanceable) by at least two nodes get an entry of instances_
+    // (primitives of one mesh that share accessors, as with a material each, are not placed
+    // twice: one node).
+    void countPlacements() {
+        std::map<PrimitiveKey, int> count;
+        for (const auto& [meshIndex, world] : placements_) {
+            if (meshIndex < 0 || meshIndex >= static_cast<int>(model_.meshes.size())) continue;
+            std::set<PrimitiveKey> keys;
+            for (const auto& prim : model_.meshes[meshIndex].primitives)
+                if (instanceable(prim, world)) keys.insert(primitiveKey(prim));
+            for (const PrimitiveKey& key : keys) ++count[key];
+        }
+        for (const auto& [key, n] : count) {
+            if (n < 2) continue;
+            sharedIndex_[key] = instances_->size();
+            instances_->emplace_back();
+        }
+    }
+
+    // A placement of a shared primitive: its geometry read at the first (in its own space), the
+    // node's matrix and material each time. The scene is charged as for a flattened copy.
+    void addInstance(const tinygltf::Primitive& prim, const glm::dmat4& world,
+                     const std::string& where, std::size_t shared) {
+        GltfInstances& out = (*instances_)[shared];
+        if (out.placements.empty()) {
+            addPrimitive(prim, glm::dmat4(1.0), where, out.geometry);
+        } else {
+            const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+            const int nAcc = nonEmpty(attribute(prim, "NORMAL"));
+            chargeGeometry(prim, mode, accessors_.count(attribute(prim, "POSITION")), nAcc < 0,
+                           where);
+        }
+        out.placements.push_back({glm::mat4(world), materialId(prim.material)});
     }
 
     std::uint32_t materialId(int material) {
@@ -864,7 +940,7 @@ class GltfFlattener {
     }
 
     void addPrimitive(const tinygltf::Primitive& prim, const glm::dmat4& world,
-                      const std::string& where) {
+                      const std::string& where, Mesh& target) {
         const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -911,7 +987,7 @@ class GltfFlattener {
             tAcc >= 0 ? accessors_.floats(tAcc, TINYGLTF_TYPE_VEC2) : std::vector<float>(),
             tanAcc >= 0 ? accessors_.floats(tanAcc, TINYGLTF_TYPE_VEC4) : std::vector<float>(),
             colAcc >= 0 ? colours(colAcc, prim.material, where) : std::vector<float>()};
-        emit(assembleTriangles(mode, idx), attr, world, materialId(prim.material));
+        emit(assembleTriangles(mode, idx), attr, world, materialId(prim.material), target);
     }
 
     // Charges the scene with the primitive's triangles and the vertices emit() will add,
@@ -977,14 +1053,14 @@ class GltfFlattener {
     // and no tangents (the specification ignores them without normals). A vertex without a
     // tangent, in a mesh that has some, gets (0, 0, 0, 0): its frame comes from the uvs.
     void emit(const std::vector<glm::uvec3>& tris, const Attributes& a, const glm::dmat4& world,
-              std::uint32_t material) {
+              std::uint32_t material, Mesh& out) {
         const glm::mat4 m(world);
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
         const bool flip = glm::determinant(glm::mat3(m)) < 0.0f;
         const bool flat = withNormals_ && a.normals.empty();
-        const auto base = static_cast<std::uint32_t>(mesh_.positions.size());
+        const auto base = static_cast<std::uint32_t>(out.positions.size());
         auto pushVertex = [&](std::uint32_t i, glm::vec3 flatNormal) {
-            mesh_.positions.push_back(
+            out.positions.push_back(
                 glm::vec3(m * glm::vec4(a.positions[3 * i], a.positions[3 * i + 1],
                                         a.positions[3 * i + 2], 1.0f)));
             if (withNormals_) {
@@ -993,37 +1069,36 @@ class GltfFlattener {
                                   : normalMatrix * glm::vec3(a.normals[3 * i], a.normals[3 * i + 1],
                                                              a.normals[3 * i + 2]);
                 const float len = glm::length(n);
-                mesh_.normals.push_back(len > 0.0f && std::isfinite(len) ? n / len : flatNormal);
+                out.normals.push_back(len > 0.0f && std::isfinite(len) ? n / len : flatNormal);
             }
             if (withTangents_)
-                mesh_.tangents.push_back(flat ? glm::vec4(0.0f) : tangent(a, i, m, flip));
+                out.tangents.push_back(flat ? glm::vec4(0.0f) : tangent(a, i, m, flip));
             // A vertex without COLOR_0, in a mesh that has some, is white.
             if (withColours_)
-                mesh_.colors.push_back(
+                out.colors.push_back(
                     a.colours.empty()
                         ? glm::vec3(1.0f)
                         : glm::vec3(a.colours[3 * i], a.colours[3 * i + 1], a.colours[3 * i + 2]));
             // glTF's v runs down the image, igi's (OBJ's) up.
             if (withUvs_)
-                mesh_.uvs.push_back(a.uvs.empty()
-                                        ? glm::vec2(0.0f)
-                                        : glm::vec2(a.uvs[2 * i], 1.0f - a.uvs[2 * i + 1]));
+                out.uvs.push_back(a.uvs.empty() ? glm::vec2(0.0f)
+                                                : glm::vec2(a.uvs[2 * i], 1.0f - a.uvs[2 * i + 1]));
         };
         if (!flat) {
             for (std::size_t i = 0; i < a.positions.size() / 3; ++i)
                 pushVertex(static_cast<std::uint32_t>(i), glm::vec3(0, 0, 1));
         }
         for (const glm::uvec3& t : tris) {
-            glm::uvec3 out = t + glm::uvec3(base);
+            glm::uvec3 corners = t + glm::uvec3(base);
             if (flat) {
-                const auto first = static_cast<std::uint32_t>(mesh_.positions.size());
+                const auto first = static_cast<std::uint32_t>(out.positions.size());
                 const glm::vec3 n = faceNormal(a, t, m, flip);
                 for (int c = 0; c < 3; ++c) pushVertex(t[c], n);
-                out = glm::uvec3(first, first + 1, first + 2);
+                corners = glm::uvec3(first, first + 1, first + 2);
             }
-            if (flip) std::swap(out.y, out.z);
-            mesh_.triangles.push_back(out);
-            mesh_.materialIds.push_back(material);
+            if (flip) std::swap(corners.y, corners.z);
+            out.triangles.push_back(corners);
+            out.materialIds.push_back(material);
         }
     }
 
@@ -1059,6 +1134,9 @@ class GltfFlattener {
     SceneAssets& assets_;
     Mesh& mesh_;
     std::vector<PunctualLight>& lights_;
+    std::vector<GltfInstances>* instances_;               ///< null: every placement flattened
+    std::vector<std::pair<int, glm::dmat4>> placements_;  ///< (mesh, node matrix), in tree order
+    std::map<PrimitiveKey, std::size_t> sharedIndex_;     ///< into instances_
     bool warnedRange_ = false;  ///< one warning per file for lights with a range
     std::vector<bool> visited_;
     bool withNormals_ = false;
@@ -1072,11 +1150,11 @@ class GltfFlattener {
 }  // namespace
 
 void loadGltf(const std::string& path, SceneAssets& assets, Mesh& mesh,
-              std::vector<PunctualLight>& lights) {
+              std::vector<PunctualLight>& lights, std::vector<GltfInstances>* instances) {
     const tinygltf::Model model = parseGltf(path, assets);
     checkGltfFeatures(path, model);
     const std::uint32_t base = GltfMaterials(path, model, assets).appendAll();
-    GltfFlattener(path, model, base, assets, mesh, lights).run();
+    GltfFlattener(path, model, base, assets, mesh, lights, instances).run();
     spdlog::debug("{}: {} triangles, {} materials, {} lights", path, mesh.triangles.size(),
                   model.materials.size(), lights.size());
 }

@@ -59,11 +59,24 @@ void loadMesh(const JsonNode& entry, SceneAssets& assets) {
     }
     if (!assets.files().exists(mesh.file)) fileNode.fail("file '" + written + "' not found");
 
+    std::vector<Mesh>& meshes = assets.scene().meshes;
+    std::vector<GltfInstances> instances;
     if (ext == ".obj") {
-        loadObj(mesh.file, assets, mesh);
+        // An OBJ file an earlier entry loaded is not loaded again: both are instances of the
+        // first one's geometry (docs/SCENE_FORMAT.md, "Instances").
+        auto first = std::find_if(meshes.begin(), meshes.end(), [&](const Mesh& m) {
+            return m.file == mesh.file && m.geometryOf < 0 && m.partOf < 0;
+        });
+        if (first != meshes.end()) {
+            first->instanced = true;
+            mesh.geometryOf = std::int32_t(first - meshes.begin());
+            mesh.instanced = true;
+        } else {
+            loadObj(mesh.file, assets, mesh);
+        }
     } else {
         std::vector<PunctualLight> lights;
-        loadGltf(mesh.file, assets, mesh, lights);
+        loadGltf(mesh.file, assets, mesh, lights, &instances);
         const std::size_t have = assets.scene().punctualLights.size();
         const std::size_t max = assets.limits().maxLights;
         if (lights.size() > max || have > max - lights.size()) {
@@ -80,7 +93,33 @@ void loadMesh(const JsonNode& entry, SceneAssets& assets) {
             assets.scene().punctualLights.push_back(std::move(l));
         }
     }
-    assets.scene().meshes.push_back(std::move(mesh));
+    std::size_t parts = 0;
+    for (const GltfInstances& shared : instances) parts += shared.placements.size();
+    if (parts > 0 && meshes.size() + 1 + parts > assets.limits().maxMeshes) {
+        fileNode.fail("its " + std::to_string(parts) +
+                      " instances of shared primitives would exceed the limit of " +
+                      std::to_string(assets.limits().maxMeshes) + " meshes per scene");
+    }
+    const auto object = std::int32_t(meshes.size());
+    meshes.push_back(std::move(mesh));
+    // The glTF primitives that several nodes place: a part of this object per placement, the
+    // first holding the geometry.
+    for (GltfInstances& shared : instances) {
+        const auto holder = std::int32_t(meshes.size());
+        for (std::size_t k = 0; k < shared.placements.size(); ++k) {
+            Mesh part;
+            if (k == 0) part = std::move(shared.geometry);
+            part.name = meshes[object].name;
+            part.file = meshes[object].file;
+            part.transform = meshes[object].transform;
+            part.geometryOf = k == 0 ? -1 : holder;
+            part.partOf = object;
+            part.material = std::int32_t(shared.placements[k].material);
+            part.local = shared.placements[k].matrix;
+            part.instanced = true;
+            meshes.push_back(std::move(part));
+        }
+    }
 }
 
 }  // namespace

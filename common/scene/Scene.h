@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -34,5 +36,29 @@ struct Scene {
     Environment environment;
     RenderSettings render;
 };
+
+/// The mesh holding mesh i's vertices and triangles (itself unless it is an instance).
+inline const Mesh& geometryOf(const Scene& scene, std::size_t i) {
+    const Mesh& m = scene.meshes[i];
+    return m.geometryOf >= 0 ? scene.meshes[std::size_t(m.geometryOf)] : m;
+}
+/// The object (scene-file entry) mesh i belongs to: the index whose transform places it.
+inline std::uint32_t objectOf(const Scene& scene, std::size_t i) {
+    const Mesh& m = scene.meshes[i];
+    return std::uint32_t(m.partOf >= 0 ? std::size_t(m.partOf) : i);
+}
+/// Mesh i's object-to-world matrix when the objects stand as `transforms` says (one per mesh,
+/// SceneState::transforms): its object's transform, then (for an instance) its own placement.
+inline glm::mat4 meshToWorld(const Scene& scene, const std::vector<Transform>& transforms,
+                             std::size_t i) {
+    const Mesh& m = scene.meshes[i];
+    if (!m.instanced) return transforms[i].matrix();
+    return transforms[objectOf(scene, i)].matrix() * m.local;
+}
+/// The material of triangle t of mesh i.
+inline std::uint32_t materialOf(const Scene& scene, std::size_t i, std::uint32_t t) {
+    const Mesh& m = scene.meshes[i];
+    return m.material >= 0 ? std::uint32_t(m.material) : geometryOf(scene, i).materialIds[t];
+}
 
 }  // namespace igi

@@ -4,9 +4,12 @@ namespace igi {
 
 Bounds3 worldBounds(const Scene& scene) {
     Bounds3 b;
-    for (const Mesh& mesh : scene.meshes) {
-        const glm::mat4 m = mesh.transform.matrix();
-        for (const glm::vec3& p : mesh.positions) b.extend(glm::vec3(m * glm::vec4(p, 1.0f)));
+    std::vector<Transform> transforms;
+    for (const Mesh& mesh : scene.meshes) transforms.push_back(mesh.transform);
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        const glm::mat4 m = meshToWorld(scene, transforms, i);
+        for (const glm::vec3& p : geometryOf(scene, i).positions)
+            b.extend(glm::vec3(m * glm::vec4(p, 1.0f)));
     }
     for (const QuadLight& q : scene.quadLights) {
         b.extend(q.corner);

@@ -42,6 +42,12 @@ void expectSameScene(const Scene& a, const Scene& b) {
         EXPECT_EQ(a.meshes[i].uvs, b.meshes[i].uvs);
         EXPECT_EQ(a.meshes[i].triangles, b.meshes[i].triangles);
         EXPECT_EQ(a.meshes[i].materialIds, b.meshes[i].materialIds);
+        // Instancing: the clients' meshes are placed as the master's.
+        EXPECT_EQ(a.meshes[i].geometryOf, b.meshes[i].geometryOf);
+        EXPECT_EQ(a.meshes[i].partOf, b.meshes[i].partOf);
+        EXPECT_EQ(a.meshes[i].material, b.meshes[i].material);
+        EXPECT_EQ(a.meshes[i].local, b.meshes[i].local);
+        EXPECT_EQ(a.meshes[i].instanced, b.meshes[i].instanced);
     }
     ASSERT_EQ(a.materials.size(), b.materials.size());
     for (std::size_t i = 0; i < a.materials.size(); ++i)

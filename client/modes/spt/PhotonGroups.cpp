@@ -41,6 +41,9 @@ void GroupTracer::tracePaths(std::uint32_t g, std::uint32_t count, RayCounters& 
     if (builder_.maxLightPathLength(true) < 2) return;  // no bounce: no indirect light
     const HaltonPaths paths(seed_, groups_, g, 0, count);
     std::uint32_t path = 0;
+    // A part of an object (an instance of a glTF file's shared primitive) moves with it: the
+    // object's index stands for it.
+    const Scene& scene = builder_.scene().geometry().scene();
     // traceLightPaths gives each VPL its path's flux / count; the pool holds G groups.
     const float share = 1.0f / float(groups_);
     builder_.traceLightPaths(
@@ -54,7 +57,8 @@ void GroupTracer::tracePaths(std::uint32_t g, std::uint32_t count, RayCounters& 
         },
         [&](std::uint32_t j, const SurfacePoint& hit) {
             path = j;
-            out.meshes.push_back(hit.mesh);
+            out.meshes.push_back(hit.mesh < scene.meshes.size() ? objectOf(scene, hit.mesh)
+                                                                : hit.mesh);
         });
     sortUnique(out.meshes);
 }
