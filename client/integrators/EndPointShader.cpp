@@ -423,7 +423,10 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
     float probability = 0;
     if (!chooseDeltaLobe(lobes, uChain, lobe, probability)) return;
     glm::vec3 direction, weight;
-    if (!sampleLobe(lobes, lobe, {0.5f, 0.5f}, direction, weight)) return;
+    // Rough glass is sampled (with two more numbers, drawn only there), a delta lobe is not.
+    const glm::vec2 uRough = lobes.roughGlass() ? random.next2() : glm::vec2(0.5f);
+    if (!sampleLobe(lobes, lobe, uRough, remapChoice(uChain, probability), direction, weight))
+        return;
     glm::vec3 emitted(0.0f);
     const glm::vec3 throughput = glossyF * (scale / probability) * weight;
     const auto end = followDeltaChain(

@@ -174,14 +174,23 @@ void IgiIntegrator::splitAtFirstHit(PixelPath& p, int pixel, PixelResult& result
 
     // Split once: the non-delta part here, and one path per delta component, whose first ray
     // (a delta lobe's direction takes no random numbers) is traced with the other pixels'.
+    // Rough glass's one lobe (reflection and refraction) is sampled with the pixel's next
+    // three numbers, which only such a hit draws.
     if (lobes.hasNonDelta()) p.ends[0] = ChainEnd{hit, lobes, glm::vec3(1.0f), hit.distance};
     if (settings_.maxEyeDepth < 1) return;
     const Lobe deltas[2] = {Lobe::Reflection, Lobe::Transmission};
     for (int i = 0; i < 2; ++i) {
         glm::vec3 next, weight;
-        if (lobeWeight(lobes, deltas[i]) <= 0 ||
-            !sampleLobe(lobes, deltas[i], {0.5f, 0.5f}, next, weight))
-            continue;
+        if (lobeWeight(lobes, deltas[i]) <= 0) continue;
+        glm::vec2 u(0.5f);
+        float uChoice = 0.5f;
+        if (deltas[i] == Lobe::Transmission && lobes.roughGlass()) {
+            PathRandom random(p.sampler, p.nextNumber);
+            u = random.next2();
+            uChoice = random.next();
+            p.nextNumber = random.position();
+        }
+        if (!sampleLobe(lobes, deltas[i], u, uChoice, next, weight)) continue;
         Continuation c;
         c.pixel = pixel;
         c.end = i + 1;

@@ -12,8 +12,9 @@ namespace igi {
 
 /// The brute-force reference: unidirectional path tracing over the same scene and materials,
 /// with next-event estimation on the non-delta lobes (Lambertian and glossy; multiple importance
-/// sampling against BRDF sampling for area lights) and Russian roulette. Mirror and glass
-/// bounces are sampled only. Converges to the answer IGI approximates.
+/// sampling against BRDF sampling for area lights) and Russian roulette. Mirror and smooth glass
+/// bounces are sampled only; rough glass (a GGX BSDF) has light samples and MIS as well. Converges
+/// to the answer IGI approximates.
 class PathIntegrator {
   public:
     PathIntegrator(const TraceableScene& scene, const Lights& lights,
@@ -29,6 +30,9 @@ class PathIntegrator {
     /// One light sample's contribution through the non-delta BRDF, MIS-weighted.
     glm::vec3 directLight(const SurfacePoint& hit, const Lobes& lobes, float uSelect,
                           glm::vec2 uPoint, RayCounters& counters) const;
+    /// The same through rough glass's BSDF (lights on either side of it).
+    glm::vec3 roughGlassLight(const SurfacePoint& hit, const Lobes& lobes, float uSelect,
+                              glm::vec2 uPoint, RayCounters& counters) const;
 
     const TraceableScene& scene_;
     const Lights& lights_;

@@ -237,13 +237,13 @@ void CausticShooter::trace(glm::vec3 origin, glm::vec3 direction, glm::vec3 powe
         // Only delta continuations make caustics.
         Lobe lobe;
         float probability = 0;
-        if (bounce > maxDepth_ ||
-            !chooseDeltaLobe(lobes, sampler.bounce(path, bounce, 2), lobe, probability))
-            return;
+        if (bounce > maxDepth_) return;
+        const float uLobe = sampler.bounce(path, bounce, 2);
+        if (!chooseDeltaLobe(lobes, uLobe, lobe, probability)) return;
         glm::vec3 weight;
         if (!sampleLobe(lobes, lobe,
                         {sampler.bounce(path, bounce, 0), sampler.bounce(path, bounce, 1)},
-                        direction, weight))
+                        remapChoice(uLobe, probability), direction, weight))
             return;
         power *= weight / probability;
         if (isBlack(power)) return;

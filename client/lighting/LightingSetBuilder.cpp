@@ -320,7 +320,7 @@ void LightingSetBuilder::traceLightPaths(const LightPathNumbers& sampler, PathEn
             if (russianRoulette && !chooseLobe(lobes, uLobe, lobe, probability, true)) break;
             glm::vec3 weight;
             if (!sampleLobe(lobes, lobe, {sampler.bounce(j, v, 0), sampler.bounce(j, v, 1)},
-                            direction, weight))
+                            remapChoice(uLobe, probability), direction, weight))
                 break;
             beta *= weight / probability;
             if (isBlack(beta) || !isFinite(beta)) break;

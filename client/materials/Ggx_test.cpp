@@ -203,7 +203,7 @@ TEST(GgxBrdf, SampledGlossyWeightIsFCosOverItsDensity) {
     int taken = 0;
     for (int i = 0; i < 200; ++i) {
         glm::vec3 direction, weight;
-        if (!sampleLobe(l, Lobe::Glossy, {u(rng), u(rng)}, direction, weight)) continue;
+        if (!sampleLobe(l, Lobe::Glossy, {u(rng), u(rng)}, 0.5f, direction, weight)) continue;
         ++taken;
         const glm::vec3 expected =
             l.brdf.glossy(direction) *

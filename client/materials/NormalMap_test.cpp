@@ -309,7 +309,7 @@ TEST(NormalMap, ViewBelowTheShadingNormalIsBentAbove) {
     int sampled = 0;
     for (int i = 0; i < 64; ++i) {
         glm::vec3 direction, weight;
-        if (sampleLobe(l, Lobe::Glossy, {(i + 0.5f) / 64.0f, (i * 37 % 64 + 0.5f) / 64.0f},
+        if (sampleLobe(l, Lobe::Glossy, {(i + 0.5f) / 64.0f, (i * 37 % 64 + 0.5f) / 64.0f}, 0.5f,
                        direction, weight)) {
             ++sampled;
             EXPECT_TRUE(finite(weight));

@@ -98,7 +98,7 @@ TEST_P(Lobes, GlossyWeightIsBrdfTimesCosineOverDensityAndConservesEnergy) {
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     for (int i = 0; i < 1000; ++i) {
         glm::vec3 w, weight;
-        if (!sampleLobe(l, Lobe::Glossy, {u(rng), u(rng)}, w, weight)) continue;
+        if (!sampleLobe(l, Lobe::Glossy, {u(rng), u(rng)}, 0.5f, w, weight)) continue;
         const float cosAlpha = glm::dot(w, l.mirrorDirection);
         const float phongPdf = (n + 1.0f) / (2.0f * kPi) * std::pow(cosAlpha, n);
         const glm::vec3 expected = l.brdf.glossy(w) * (w.z / phongPdf);

@@ -54,7 +54,8 @@ std::optional<ChainEnd> followDeltaChainFrom(const TraceableScene& scene,
         end.lobes = lobesAt(end.hit, wo);
         Lobe lobe;
         float probability = 0;
-        if (!chooseLobe(end.lobes, next(), lobe, probability)) return std::nullopt;
+        const float uLobe = next();
+        if (!chooseLobe(end.lobes, uLobe, lobe, probability)) return std::nullopt;
         if (!isDelta(lobe)) {
             end.throughput = throughput / nonDeltaProbability(end.lobes);
             end.pathLength = pathLength;
@@ -63,7 +64,10 @@ std::optional<ChainEnd> followDeltaChainFrom(const TraceableScene& scene,
         if (hits >= maxHits) return std::nullopt;
         glm::vec3 weight;
         const float u0 = next(), u1 = next();
-        if (!sampleLobe(end.lobes, lobe, {u0, u1}, direction, weight)) return std::nullopt;
+        // Rough glass chooses between reflection and refraction with the lobe's number again.
+        if (!sampleLobe(end.lobes, lobe, {u0, u1}, remapChoice(uLobe, probability), direction,
+                        weight))
+            return std::nullopt;
         throughput *= weight / probability;
         if (isBlack(throughput)) return std::nullopt;
         const glm::vec3 origin =

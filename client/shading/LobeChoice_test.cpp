@@ -56,7 +56,7 @@ glm::dvec3 albedoByChoice(const Lobes& l, double& glossyShare) {
         if (!chooseLobe(l, uLobe, lobe, probability)) continue;
         if (lobe == Lobe::Glossy) ++glossy;
         glm::vec3 direction, weight;
-        if (!sampleLobe(l, lobe, u, direction, weight)) continue;
+        if (!sampleLobe(l, lobe, u, 0.5f, direction, weight)) continue;
         sum += glm::dvec3(weight / probability);
     }
     glossyShare = double(glossy) / n;

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "materials/NormalMap.h"
+#include "materials/RoughDielectric.h"
 #include "math/Color.h"
 #include "math/Frame.h"
 #include "math/Optics.h"
@@ -66,6 +67,22 @@ Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
         float cosT = 0;
         const float cosI = std::max(1e-6f, glm::dot(wo, l.normal));
         const float f = fresnelDielectric(cosI, eta, cosT);
+        // Rough glass (glTF transmission with roughness): one lobe, the GGX BSDF of the
+        // interface, weighed by its albedo estimate at the macro normal.
+        if (m.reflection == Reflection::Ggx) {
+            const float roughness = std::clamp(hit.roughness, 0.0f, 1.0f);
+            const float alpha = roughness * roughness;
+            if (alpha >= kMinGgxAlpha) {
+                // An interpolated normal that turns away from wo (a silhouette of a smooth
+                // mesh) leaves the BSDF without a side: the geometric normal stands in.
+                if (!(glm::dot(wo, l.normal) > 1e-4f)) l.normal = l.faceNormal;
+                l.roughAlpha = alpha;
+                l.eta = eta;
+                l.tint = m.transmittance;
+                l.transmission = f + (1.0f - f) * m.transmittance;
+                return l;
+            }
+        }
         l.reflection = glm::vec3(f);
         if (f < 1.0f) {
             l.transmission = (1.0f - f) * m.transmittance;
@@ -162,9 +179,36 @@ bool chooseDeltaLobe(const Lobes& l, float u, Lobe& lobe, float& probability, bo
     return chooseAmong(l, kDelta, 2, u, lobe, probability, roulette);
 }
 
-bool sampleLobe(const Lobes& l, Lobe lobe, glm::vec2 u, glm::vec3& direction, glm::vec3& weight) {
+float remapChoice(float u, float probability) {
+    return probability > 0 ? std::min(u / probability, 0x1.fffffep-1f) : 0.0f;
+}
+
+glm::vec3 roughGlassValue(const Lobes& l, glm::vec3 wi) {
+    const float cosFace = glm::dot(wi, l.faceNormal), cosN = glm::dot(wi, l.normal);
+    if (cosFace * cosN <= 0) return glm::vec3(0.0f);  // the two normals disagree on its side
+    const float f = roughdielectric::evaluate(l.roughAlpha, l.eta, l.normal, l.wo, wi);
+    return cosN < 0 ? f * l.tint : glm::vec3(f);
+}
+
+float roughGlassPdf(const Lobes& l, glm::vec3 wi) {
+    const float cosFace = glm::dot(wi, l.faceNormal), cosN = glm::dot(wi, l.normal);
+    if (cosFace * cosN <= 0) return 0.0f;
+    return roughdielectric::pdf(l.roughAlpha, l.eta, l.normal, l.wo, wi);
+}
+
+bool sampleLobe(const Lobes& l, Lobe lobe, glm::vec2 u, float uChoice, glm::vec3& direction,
+                glm::vec3& weight) {
     switch (lobe) {
         case Lobe::Transmission:
+            if (l.roughGlass()) {
+                roughdielectric::Sample s;
+                if (!roughdielectric::sample(l.roughAlpha, l.eta, l.normal, l.wo, u, uChoice, s))
+                    return false;
+                direction = s.wi;
+                weight = s.refracted ? s.weight * l.tint : glm::vec3(s.weight);
+                const float cosFace = glm::dot(direction, l.faceNormal);
+                return s.refracted ? cosFace < 0 : cosFace > 0;
+            }
             direction = l.refractDirection;
             weight = l.transmission;
             return glm::dot(direction, l.faceNormal) < 0;

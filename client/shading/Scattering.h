@@ -14,6 +14,12 @@ namespace igi {
 /// sampling can follow (a mirror, or the Fresnel reflection of glass; glass's refraction).
 /// Eye paths evaluate the non-delta lobes at their end point and follow the delta ones; light
 /// paths, photons and the path tracer choose one lobe at random.
+///
+/// Rough glass (glass whose alpha = roughness^2 is at least kMinGgxAlpha) is one lobe, the
+/// GGX BSDF of its interface (client/materials/RoughDielectric.h: reflection and refraction
+/// together), which `transmission` stands for: a lobe followed by sampling as glass is (its
+/// weight the interface's albedo estimate F + (1 - F) tint at the macro normal), that only the
+/// path tracer also evaluates (roughGlassValue, roughGlassPdf) for its light samples.
 struct Lobes {
     SurfaceBrdf brdf;              ///< the non-delta part, oriented to wo's side
     glm::vec3 reflection{0.0f};    ///< delta: mirror Ks, or the Fresnel reflectance of glass
@@ -23,9 +29,13 @@ struct Lobes {
     glm::vec3 wo{0.0f};
     glm::vec3 mirrorDirection{0.0f};  ///< wo reflected about the shading normal
     glm::vec3 refractDirection{0.0f};
+    float roughAlpha = 0;  ///< rough glass: its alpha (>= kMinGgxAlpha); 0 otherwise
+    float eta = 1;         ///< rough glass: the index below `normal` over the one above
+    glm::vec3 tint{1.0f};  ///< rough glass: its transmittance (refraction only)
 
     bool hasNonDelta() const { return !brdf.empty(); }
     bool hasDelta() const;
+    bool roughGlass() const { return roughAlpha > 0; }
 };
 
 Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo);
@@ -46,11 +56,21 @@ bool chooseDeltaLobe(const Lobes& lobes, float u, Lobe& lobe, float& probability
                      bool roulette = false);
 
 /// Samples a continuation in one lobe: the direction and its weight (the lobe's BSDF times
-/// cosine over the lobe's own pdf; the lobe's choice is the caller's). Diffuse and glossy use
-/// u; mirrors and glass ignore it. False when the direction goes through the surface (a
-/// shading-normal artefact, or a Phong direction below the horizon).
-bool sampleLobe(const Lobes& lobes, Lobe lobe, glm::vec2 u, glm::vec3& direction,
+/// cosine over the lobe's own pdf; the lobe's choice is the caller's). Diffuse, glossy and
+/// rough glass use u, rough glass uChoice too (reflection or refraction); mirrors and smooth
+/// glass ignore both. False when the direction goes through the surface (a shading-normal
+/// artefact, a Phong direction below the horizon, a rough glass direction on the wrong side).
+bool sampleLobe(const Lobes& lobes, Lobe lobe, glm::vec2 u, float uChoice, glm::vec3& direction,
                 glm::vec3& weight);
+
+/// A fresh uniform number from the one that chose a lobe of probability `probability` that is
+/// the first lobe with weight (as rough glass's only lobe is): u / probability, below one.
+float remapChoice(float u, float probability);
+
+/// Rough glass: its BSDF toward wi (the tint on refraction), and the density with which
+/// sampleLobe draws wi; zero where wi is on the wrong side of the geometric surface.
+glm::vec3 roughGlassValue(const Lobes& lobes, glm::vec3 wi);
+float roughGlassPdf(const Lobes& lobes, glm::vec3 wi);
 
 /// Whether a lobe is a delta lobe (mirror or glass).
 inline bool isDelta(Lobe lobe) {

@@ -319,7 +319,7 @@ void checkGltfFeatures(const std::string& path, const tinygltf::Model& model) {
         spdlog::warn("{}: extensions not modelled, rendered without them: {}", path, joined(used));
     std::set<std::string> ignored;
     // Which material and slot each of these concerns, so that the warning can be acted on.
-    std::vector<std::string> otherTexCoord, partialTransmission, roughTransmission;
+    std::vector<std::string> otherTexCoord, partialTransmission;
     for (std::size_t i = 0; i < model.materials.size(); ++i) {
         const tinygltf::Material& m = model.materials[i];
         // Named as GltfMaterials::convert names it (and as scene files address it).
@@ -361,18 +361,9 @@ void checkGltfFeatures(const std::string& path, const tinygltf::Model& model) {
                 name + " (factor " + factor + (textured ? ", transmissionTexture not read" : "") +
                 ": rendered " + (transmission > 0.5 ? "as clear glass" : "opaque") + ")");
         }
-        // Glass is smooth (a delta refraction): a transmitting material's roughness, whose
-        // lobe would blur what is seen through it (a GGX BTDF), is not modelled.
-        // (A metallicRoughnessTexture's green only scales the factor down.)
-        if (transmission > 0.5 && std::sqrt(kMinGgxAlpha) <= pbr.roughnessFactor) {
-            char value[32];
-            std::snprintf(value, sizeof value, "%g", pbr.roughnessFactor);
-            roughTransmission.push_back(name + " (roughnessFactor " + value +
-                                        (pbr.metallicRoughnessTexture.index >= 0
-                                             ? ", with a metallicRoughnessTexture"
-                                             : "") +
-                                        ")");
-        }
+        // A transmitting material's roughness is modelled: rough glass, the GGX BSDF of
+        // Walter et al. (client/materials/RoughDielectric.h), smooth glass below the mirror
+        // threshold (GltfMaterials::convert).
     }
     auto listed = [](const std::vector<std::string>& items) {
         std::string out;
@@ -385,9 +376,6 @@ void checkGltfFeatures(const std::string& path, const tinygltf::Model& model) {
     if (!partialTransmission.empty())
         ignored.insert("partial KHR_materials_transmission, all or nothing instead (" +
                        listed(partialTransmission) + ")");
-    if (!roughTransmission.empty())
-        ignored.insert("rough transmission, smooth glass instead (" + listed(roughTransmission) +
-                       ")");
     if (!ignored.empty())
         spdlog::warn("{}: material features not modelled, rendered without them: {}", path,
                      joined(ignored));
@@ -431,6 +419,21 @@ class GltfMaterials {
             m.glass = true;
             const double ior = extensionNumber(gm.extensions, "KHR_materials_ior", "ior", 1.5);
             m.ior = ior > 0.0 ? static_cast<float>(ior) : 1.5f;
+            // Rough glass (Material::glass with Reflection::Ggx) where the roughness factor
+            // reaches the mirror threshold; the metallicRoughnessTexture's green scales it per
+            // texel (texels under the threshold are smooth glass). Below it, smooth glass as
+            // before: the texture only scales the factor down.
+            const double roughness = std::clamp(pbr.roughnessFactor, 0.0, 1.0);
+            if (roughness * roughness >= double(kMinGgxAlpha)) {
+                m.reflection = Reflection::Ggx;
+                m.roughness = static_cast<float>(roughness);
+                m.metallic = 0.0f;
+                if (pbr.metallicRoughnessTexture.index >= 0) {
+                    m.metallicRoughnessTexture =
+                        dataTexture(pbr.metallicRoughnessTexture.index, "metallicRoughnessTexture");
+                    m.metallicRoughnessUv = uvTransformOf(pbr.metallicRoughnessTexture.extensions);
+                }
+            }
         } else {
             // Metallic-roughness (the specification's Appendix B). Without a
             // pbrMetallicRoughness both factors default to 1: a rough white metal.

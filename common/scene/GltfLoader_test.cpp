@@ -218,14 +218,45 @@ TEST(GltfFeatures, PartialTransmissionAndOtherTexCoordsNameTheirMaterials) {
                         "baseColorTexture (texCoord 1); 'second' normalTexture (texCoord 1))"),
               std::string::npos)
         << text;
-    // Glass is smooth: a transmitting material's roughness (the specification's default is 1)
-    // is named too.
-    EXPECT_NE(text.find("rough transmission, smooth glass instead ('tinted' (roughnessFactor 1))"),
-              std::string::npos)
-        << text;
+    // A transmitting material's roughness (the specification's default is 1) is modelled
+    // (rough glass): no warning names it.
+    EXPECT_EQ(text.find("rough transmission"), std::string::npos) << text;
     EXPECT_EQ(text.find("'clear'"), std::string::npos) << text;
     EXPECT_EQ(text.find("'solid'"), std::string::npos) << text;
     EXPECT_EQ(text.find("'first'"), std::string::npos) << text;
+}
+
+// KHR_materials_transmission with a roughness at or above the mirror threshold is rough glass
+// (glass with a GGX interface, its ior from KHR_materials_ior); below it, smooth glass.
+TEST(GltfFeatures, RoughTransmissionIsRoughGlass) {
+    const Scene scene = plainGltfWith([](nlohmann::json& g) {
+        auto glass = [](const char* name, double roughness) {
+            return nlohmann::json{{"name", name},
+                                  {"pbrMetallicRoughness", {{"roughnessFactor", roughness}}},
+                                  {"extensions",
+                                   {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                    {"KHR_materials_ior", {{"ior", 1.33}}}}}};
+        };
+        g["materials"] = nlohmann::json::array(
+            {glass("frosted", 0.4),
+             glass("clear", 0.03),
+             {{"name", "bare"},
+              {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}}}});
+        g["meshes"][0]["primitives"][0]["material"] = 0;
+    });
+    ASSERT_EQ(scene.materials.size(), 3u);
+    const Material& frosted = scene.materials[0];
+    EXPECT_TRUE(frosted.glass);
+    EXPECT_EQ(frosted.reflection, Reflection::Ggx);
+    EXPECT_FLOAT_EQ(frosted.roughness, 0.4f);
+    EXPECT_FLOAT_EQ(frosted.ior, 1.33f);
+    EXPECT_TRUE(frosted.isSpecular());  // caustic photons are aimed at it, no VPL is stored
+    const Material& clear = scene.materials[1];
+    EXPECT_TRUE(clear.glass);
+    EXPECT_EQ(clear.reflection, Reflection::None);  // smooth: exactly the glass of before
+    // Without pbrMetallicRoughness the roughness is the specification's default, 1.
+    EXPECT_EQ(scene.materials[2].reflection, Reflection::Ggx);
+    EXPECT_FLOAT_EQ(scene.materials[2].roughness, 1.0f);
 }
 
 // The default material of the specification (no pbrMetallicRoughness): a rough white metal.

@@ -18,7 +18,9 @@ enum class Reflection : std::uint8_t {
     /// Schlick Fresnel of f0 = mix(((ior - 1) / (ior + 1))^2, base colour, metallic), over a
     /// Lambertian lobe of the base colour times (1 - metallic)(1 - f0 of the dielectric). The
     /// base colour is `diffuse` times its texture; roughness and metallic are the factors times
-    /// the green and blue of `metallicRoughnessTexture`.
+    /// the green and blue of `metallicRoughnessTexture`. On glass (`glass`): rough glass, the
+    /// GGX BSDF of its interface (reflection and refraction, Walter et al. 2007) of alpha =
+    /// roughness^2, smooth glass where alpha is below kMinGgxAlpha.
     Ggx,
 };
 

@@ -12,12 +12,13 @@ namespace {
 
 void applyType(const JsonNode& node, Material& m) {
     const std::string type =
-        node.choice({"diffuse", "glossy", "mirror", "glass", "metallic_roughness"});
-    m.glass = type == "glass";
-    m.reflection = type == "glossy"               ? Reflection::Glossy
-                   : type == "mirror"             ? Reflection::Mirror
-                   : type == "metallic_roughness" ? Reflection::Ggx
-                                                  : Reflection::None;
+        node.choice({"diffuse", "glossy", "mirror", "glass", "rough_glass", "metallic_roughness"});
+    // rough_glass: glass whose interface is a GGX BSDF of alpha = roughness^2 (Material.h).
+    m.glass = type == "glass" || type == "rough_glass";
+    m.reflection = type == "glossy"                                        ? Reflection::Glossy
+                   : type == "mirror"                                      ? Reflection::Mirror
+                   : type == "metallic_roughness" || type == "rough_glass" ? Reflection::Ggx
+                                                                           : Reflection::None;
 }
 
 void apply(const JsonNode& node, const std::optional<int>& texture, Material& m) {

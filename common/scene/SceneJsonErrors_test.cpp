@@ -171,7 +171,7 @@ TEST(SceneJsonErrors, BadTypes) {
                         triangleFiles());
         }),
         "/materials/a/type: unknown value 'metal' (expected one of: diffuse, glossy, mirror, "
-        "glass, metallic_roughness)");
+        "glass, rough_glass, metallic_roughness)");
     EXPECT_CONTAINS(
         sceneErrorOf([] { parseInline(withLight(R"("render": {"integrator": "bdpt"})")); }),
         "/render/integrator: unknown value 'bdpt'");
