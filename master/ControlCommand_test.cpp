@@ -157,6 +157,24 @@ TEST(ControlCommand, AMaterialReflectingTooMuchIsScaledDown) {
     EXPECT_TRUE(parse(R"({"cmd":"material","name":"red","specular":0.1})").warnings.empty());
 }
 
+TEST(ControlCommand, AMaterialTypeIsReadAsTheSceneFileReadsIt) {
+    // rough_glass (issue 34) as the scene file's materials section has it: glass with a GGX
+    // interface, and back to smooth glass.
+    Material m =
+        std::get<MaterialChange>(
+            parse(R"({"cmd":"material","name":"red","type":"rough_glass","roughness":0.4})")
+                .changes.at(0))
+            .value;
+    EXPECT_TRUE(m.glass);
+    EXPECT_EQ(m.reflection, Reflection::Ggx);
+    EXPECT_FLOAT_EQ(m.roughness, 0.4f);
+    m = std::get<MaterialChange>(
+            parse(R"({"cmd":"material","name":"red","type":"glass"})").changes.at(0))
+            .value;
+    EXPECT_TRUE(m.glass);
+    EXPECT_EQ(m.reflection, Reflection::None);
+}
+
 TEST(ControlCommand, AppliedChangesGiveTheCommandedState) {
     SceneState s = currentState();
     applyChanges(s, parse(R"({"cmd":"material","name":"red","emission":[1,0,0]})").changes);

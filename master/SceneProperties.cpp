@@ -9,6 +9,7 @@
 #include "scene/JsonReader.h"
 #include "scene/KeySuggestion.h"
 #include "scene/SceneError.h"
+#include "scene/SceneSections.h"
 
 namespace igi {
 
@@ -120,13 +121,7 @@ void readScale(const JsonNode& node, Transform& t) {
 }
 
 void readMaterialType(const JsonNode& node, Material& m) {
-    const std::string type =
-        node.choice({"diffuse", "glossy", "mirror", "glass", "metallic_roughness"});
-    m.glass = type == "glass";
-    m.reflection = type == "glossy"               ? Reflection::Glossy
-                   : type == "mirror"             ? Reflection::Mirror
-                   : type == "metallic_roughness" ? Reflection::Ggx
-                                                  : Reflection::None;
+    applyMaterialType(node, m);
 }
 
 // The type is two fields that change together.

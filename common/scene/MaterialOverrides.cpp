@@ -8,9 +8,7 @@
 
 namespace igi {
 
-namespace {
-
-void applyType(const JsonNode& node, Material& m) {
+void applyMaterialType(const JsonNode& node, Material& m) {
     const std::string type =
         node.choice({"diffuse", "glossy", "mirror", "glass", "rough_glass", "metallic_roughness"});
     // rough_glass: glass whose interface is a GGX BSDF of alpha = roughness^2 (Material.h).
@@ -21,8 +19,10 @@ void applyType(const JsonNode& node, Material& m) {
                                                                            : Reflection::None;
 }
 
+namespace {
+
 void apply(const JsonNode& node, const std::optional<int>& texture, Material& m) {
-    if (auto v = node.find("type")) applyType(*v, m);
+    if (auto v = node.find("type")) applyMaterialType(*v, m);
     // Albedos and tints are fractions in [0, 1] per channel.
     if (auto v = node.find("diffuse")) m.diffuse = v->rgb(NumberRange::closed(0, 1));
     if (auto v = node.find("specular")) m.specular = v->rgb(NumberRange::closed(0, 1));

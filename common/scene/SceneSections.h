@@ -42,4 +42,9 @@ void loadMeshes(const JsonNode& node, SceneAssets& assets);
 /// "materials": {name: {overrides}}, applied to every loaded material of that name.
 void applyMaterialOverrides(const JsonNode& node, SceneAssets& assets);
 
+/// A material's "type" (diffuse, glossy, mirror, glass, rough_glass, metallic_roughness): the
+/// two fields it sets, `glass` and `reflection`. The scene file's overrides and the material
+/// control command both read it here.
+void applyMaterialType(const JsonNode& node, Material& m);
+
 }  // namespace igi
