@@ -27,6 +27,9 @@ struct ConnectedClient {
     std::chrono::steady_clock::time_point connected;
     bool helloed = false;
     bool sceneSent = false;  ///< it has the scene: it gets every update from now on
+    /// The first frame it may render: it has no epoch older than the scene's it got, which
+    /// frames opened before may still render (TileScheduler::next).
+    std::uint32_t firstFrame = 0;
     bool ready = false;
     std::string host;
     std::uint32_t threads = 1;

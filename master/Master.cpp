@@ -117,6 +117,7 @@ void Master::onWelcomed(ConnectedClient& c) {
             timeline_->epoch() - sceneData_.history.size());
     c.connection->send(sceneData_, 0, timeline_->epoch());
     c.sceneSent = true;
+    c.firstFrame = nextFrameToOpen_;
 }
 
 void Master::onReady(ConnectedClient& c, const proto::SceneReady& ready) {
@@ -181,7 +182,7 @@ void Master::dispatch() {
         if (scheduler_->inFlight(id) > depth - std::max(1, depth / 4)) continue;
         while (scheduler_->inFlight(id) < depth) {
             openFramesAsNeeded();
-            const auto a = scheduler_->next(id, kDuplicateAfterSeconds);
+            const auto a = scheduler_->next(id, kDuplicateAfterSeconds, s.firstFrame);
             if (!a) break;
             const Tile& t = scheduler_->layout()[a->tile];
             stats_.noteAssignment(a->frame, id, t.setIndex(frameSettings_.interleaveX));

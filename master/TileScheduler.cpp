@@ -41,10 +41,11 @@ std::vector<std::uint32_t> TileScheduler::openFrames() const {
     return result;
 }
 
-std::optional<Assignment> TileScheduler::next(ClientId client, double minDuplicateAge) {
+std::optional<Assignment> TileScheduler::next(ClientId client, double minDuplicateAge,
+                                              std::uint32_t firstFrame) {
     for (auto& [frame, f] : frames_)
-        if (f.pending > 0) return takePending(client, frame, f);
-    return takeDuplicate(client, minDuplicateAge);
+        if (frame >= firstFrame && f.pending > 0) return takePending(client, frame, f);
+    return takeDuplicate(client, minDuplicateAge, firstFrame);
 }
 
 int TileScheduler::chooseSet(ClientId client, const FrameState& f) const {
@@ -79,10 +80,12 @@ std::optional<Assignment> TileScheduler::takePending(ClientId client, std::uint3
     return Assignment{frame, tile, false};
 }
 
-std::optional<Assignment> TileScheduler::takeDuplicate(ClientId client, double minAge) {
+std::optional<Assignment> TileScheduler::takeDuplicate(ClientId client, double minAge,
+                                                       std::uint32_t firstFrame) {
     const auto now = std::chrono::steady_clock::now();
     // The oldest frame first: it is the one holding the output back.
     for (auto& [frame, f] : frames_) {
+        if (frame < firstFrame) continue;
         for (std::uint32_t i = 0; i < f.tiles.size(); ++i) {
             TileState& t = f.tiles[i];
             // One spare copy per tile is enough to get past one slow client.

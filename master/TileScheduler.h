@@ -41,7 +41,10 @@ class TileScheduler {
     /// of a tile held elsewhere is given only once it is late: out for at least
     /// `minDuplicateAge` seconds and three times its holder's usual latency (a holder not yet
     /// measured is allowed a second), so that a slower client is not raced for every tile.
-    std::optional<Assignment> next(ClientId client, double minDuplicateAge = 0);
+    /// Frames before `firstFrame` are not the client's: one that joined holds no epoch older
+    /// than the one it got with the scene, and frames opened before then may render one.
+    std::optional<Assignment> next(ClientId client, double minDuplicateAge = 0,
+                                   std::uint32_t firstFrame = 0);
     /// The holder's usual latency, as measured from its completed tiles (seconds), if any.
     std::optional<double> latency(ClientId client) const;
     /// A result arrived. True if it completes the tile (the first copy); false if the tile was
@@ -76,7 +79,8 @@ class TileScheduler {
     };
 
     std::optional<Assignment> takePending(ClientId client, std::uint32_t frame, FrameState& f);
-    std::optional<Assignment> takeDuplicate(ClientId client, double minAge);
+    std::optional<Assignment> takeDuplicate(ClientId client, double minAge,
+                                            std::uint32_t firstFrame);
     int chooseSet(ClientId client, const FrameState& f) const;
     void give(ClientId client, std::uint32_t frame, std::uint32_t tile, FrameState& f);
 

@@ -30,6 +30,24 @@ TEST(TileScheduler, EveryTileOfAFrameIsHandedOutOnceThenTheFrameCompletes) {
     EXPECT_FALSE(s.complete(1, 0, *given.begin()));  // a second result for a done tile is dropped
 }
 
+// A client that joined while frames 0 and 1 were open (of epochs it may not have) gets no tile
+// of them, not even a late copy, and goes on to frame 2.
+TEST(TileScheduler, AClientGetsNoTileOfAFrameBeforeItsFirst) {
+    TileScheduler s(layout(), 9);
+    s.openFrame(0);
+    s.openFrame(1);
+    ASSERT_TRUE(s.next(1));  // client 1 holds a tile of frame 0, late by any measure below
+    EXPECT_FALSE(s.next(2, 0.0, 2)) << "frames 0 and 1 are before client 2's first";
+    s.openFrame(2);
+    const auto a = s.next(2, 0.0, 2);
+    ASSERT_TRUE(a);
+    EXPECT_EQ(a->frame, 2u);
+    // Without the bound the same client would have taken frame 0's pending tiles first.
+    const auto b = s.next(3, 0.0);
+    ASSERT_TRUE(b);
+    EXPECT_EQ(b->frame, 0u);
+}
+
 TEST(TileScheduler, ClientsStayOnTheirSetAndSpreadOverDifferentSets) {
     const auto tiles = layout();
     TileScheduler s(tiles, 9);
