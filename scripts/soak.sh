@@ -131,13 +131,19 @@ echo "seconds,name,pid,rss_kb,fds,threads,frames_done" > "$samples"
     t=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')
     frames="$("$bin/igi-ctl" --connect "127.0.0.1:$control" status 2>/dev/null |
       sed -n 's/.*"frames_done":\([0-9]*\).*/\1/p')"
-    while read -r name pid; do
+    # A pid is the latest roster entry's: a dead client's pid may be reused by a later client,
+    # or by any other process of the machine, which is not sampled (its name is not ours).
+    declare -A who=()
+    while read -r name pid; do who[$pid]=$name; done < "$roster"
+    for pid in "${!who[@]}"; do
+      name=${who[$pid]}
+      case "$(cat "/proc/$pid/comm" 2>/dev/null)" in igi-master|igi-client) ;; *) continue ;; esac
       [ -r "/proc/$pid/status" ] || continue
       rss=$(awk '/^VmRSS/{print $2}' "/proc/$pid/status" 2>/dev/null) || continue
       threads=$(awk '/^Threads/{print $2}' "/proc/$pid/status" 2>/dev/null) || continue
       fds=$(ls "/proc/$pid/fd" 2>/dev/null | wc -l)
       [ -n "$rss" ] && echo "$t,$name,$pid,$rss,$fds,$threads,${frames:-}" >> "$samples"
-    done < "$roster"
+    done
     sleep "$interval"
   done
 ) &
