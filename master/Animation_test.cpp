@@ -282,7 +282,7 @@ TEST(Animation, ErrorsNameTheFileAndThePath) {
         {R"({"materials": {"red": [{"frame": 0, "ior": 0}]}})", "/materials/red/0/ior",
          "must be in (0, inf]"},
         {R"({"materials": {"red": [{"frame": 0, "type": "metal"}]}})", "/materials/red/0/type",
-         "unknown value 'metal' (expected one of: diffuse, glossy, mirror, glass, "
+         "unknown value 'metal' (expected one of: diffuse, glossy, mirror, glass, rough_glass, "
          "metallic_roughness)"},
         {R"({"materials": {"red": [{"frame": 0, "texture": "x.png"}]}})",
          "/materials/red/0/texture", "unknown key"},
