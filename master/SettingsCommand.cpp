@@ -16,7 +16,7 @@ struct SettingCompare {
 
 // The settings the master's frames are made from: the tile layout, the frame buffers, the
 // discontinuity buffer and the accumulation. They change live: the master lets the frames in
-// flight finish and rebuilds these at the change (Master::openFramesAsNeeded).
+// flight finish and rebuilds these at the change (Master::framesFollowSettings).
 const std::vector<SettingCompare>& frameSettings() {
     static const std::vector<SettingCompare> frame = {
         {"interleave",
@@ -80,7 +80,7 @@ std::vector<std::string> liveSettingKeys() {
         for (const SettingCompare& f : fixedSettings()) fixed = fixed || key == f.key;
         if (!fixed) keys.push_back(key);
     }
-    keys.push_back("converge");      // sets the estimator's parts at once (not progressive_filter)
+    keys.push_back("converge");      // sets the estimator's parts at once
     keys.push_back("target_error");  // the master's, not a render setting (--target-error)
     return keys;
 }
