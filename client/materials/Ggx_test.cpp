@@ -11,30 +11,13 @@
 #include "materials/SurfaceBrdf.h"
 #include "math/Optics.h"
 #include "shading/Scattering.h"
+#include "testing/SphereGrid.h"
 
 namespace igi {
 namespace {
 
-// Directions on a latitude-longitude grid about +z, with their solid angles.
-template <typename F>
-double integrateOverSphere(F&& f, int steps = 1024) {
-    double sum = 0;
-    for (int i = 0; i < steps; ++i) {
-        const double theta = (i + 0.5) * M_PI / steps;
-        const double ring = std::sin(theta) * (M_PI / steps) * (2.0 * M_PI / (2 * steps));
-        for (int j = 0; j < 2 * steps; ++j) {
-            const double phi = (j + 0.5) * 2.0 * M_PI / (2 * steps);
-            const glm::vec3 w(float(std::sin(theta) * std::cos(phi)),
-                              float(std::sin(theta) * std::sin(phi)), float(std::cos(theta)));
-            sum += f(w) * ring;
-        }
-    }
-    return sum;
-}
-
-glm::vec3 viewAt(float cosTheta) {
-    return {std::sqrt(1 - cosTheta * cosTheta), 0.0f, cosTheta};
-}
+using testing::integrateOverSphere;
+using testing::viewAt;
 
 SurfaceBrdf ggxBrdf(float kd, float f0, float alpha, glm::vec3 wo) {
     const glm::vec3 n(0, 0, 1);

@@ -13,27 +13,12 @@
 #include "math/Warp.h"
 #include "shading/ConnectionBound.h"
 #include "shading/Scattering.h"
+#include "testing/SphereGrid.h"
 
 namespace igi {
 namespace {
 
-// Directions on a latitude-longitude grid about +z, with their solid angles: enough for the
-// densities below to integrate within 1e-3.
-template <typename F>
-double integrateOverSphere(F&& f, int steps = 1024) {
-    double sum = 0;
-    for (int i = 0; i < steps; ++i) {
-        const double theta = (i + 0.5) * M_PI / steps;
-        const double ring = std::sin(theta) * (M_PI / steps) * (2.0 * M_PI / (2 * steps));
-        for (int j = 0; j < 2 * steps; ++j) {
-            const double phi = (j + 0.5) * 2.0 * M_PI / (2 * steps);
-            const glm::vec3 w(float(std::sin(theta) * std::cos(phi)),
-                              float(std::sin(theta) * std::sin(phi)), float(std::cos(theta)));
-            sum += f(w) * ring;
-        }
-    }
-    return sum;
-}
+using testing::integrateOverSphere;
 
 SurfaceBrdf brdf(float kd, float ks, float exponent) {
     return SurfaceBrdf::make(glm::vec3(kd), glm::vec3(ks), exponent, glm::vec3(0, 0, 1));
