@@ -18,8 +18,8 @@ namespace igi {
 namespace {
 
 constexpr auto kHeartbeatPeriod = std::chrono::seconds(2);
-// Versions kept for tiles still to come; the master renders at most two frames at once.
-constexpr std::size_t kKeptVersions = 8;
+// Versions kept for tiles still to come.
+constexpr std::size_t kKeptVersions = proto::kClientKeptEpochs;
 
 }  // namespace
 

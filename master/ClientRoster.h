@@ -27,8 +27,10 @@ struct ConnectedClient {
     std::chrono::steady_clock::time_point connected;
     bool helloed = false;
     bool sceneSent = false;  ///< it has the scene: it gets every update from now on
-    /// The first frame it may render: it has no epoch older than the scene's it got, which
-    /// frames opened before may still render (TileScheduler::next).
+    /// The first frame it may render: the first open frame of an epoch it holds
+    /// (TileScheduler::next). A joiner gets every epoch of the frames open when it joins
+    /// (SceneTimeline::Join), so this bound only bites when more epochs are open than a client
+    /// keeps.
     std::uint32_t firstFrame = 0;
     bool ready = false;
     std::string host;

@@ -117,7 +117,12 @@ void Master::onWelcomed(ConnectedClient& c) {
             timeline_->epoch() - sceneData_.history.size());
     c.connection->send(sceneData_, 0, timeline_->epoch());
     c.sceneSent = true;
+    // It holds the base epoch and those after it, the newest proto::kClientKeptEpochs.
+    const std::uint32_t oldestHeld = std::max<std::int64_t>(
+        timeline_->baseEpoch(), std::int64_t(timeline_->epoch()) - proto::kClientKeptEpochs + 1);
     c.firstFrame = nextFrameToOpen_;
+    for (std::uint32_t f = nextFrameToOpen_; f-- > nextFrameToFinish_;)
+        if (frames_->at(f).epoch >= oldestHeld) c.firstFrame = f;
 }
 
 void Master::onReady(ConnectedClient& c, const proto::SceneReady& ready) {

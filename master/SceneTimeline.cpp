@@ -53,37 +53,38 @@ SceneTimeline::FrameStart SceneTimeline::beginFrame(std::uint32_t frame) {
     if (!start.changes.empty()) {
         ++epoch_;
         state_ = wanted;
-        if (changesSettings(start.changes))
-            restartHistory(frame);
-        else
-            keepInHistory(frame, start.changes);
+        history_.push_back({frame, start.changes});
+        if (changesSettings(start.changes)) {
+            // Clients start the lighting afresh at new settings (a session started with them
+            // here would have no past); the new settings may keep more or less of what follows.
+            restartEpoch_ = epoch_;
+            historyDepth_ = joinHistoryDepth(state_.render);
+        }
     }
     start.epoch = epoch_;
     frameEpochs_[frame] = epoch_;
+    forgetOldEpochs();
     return start;
 }
 
-void SceneTimeline::keepInHistory(std::uint32_t frame, const std::vector<SceneChange>& changes) {
-    history_.push_back({frame, changes});
-    if (history_.size() > historyDepth_) {
+void SceneTimeline::endFrame(std::uint32_t frame) {
+    frameEpochs_.erase(frame);
+    forgetOldEpochs();
+}
+
+void SceneTimeline::forgetOldEpochs() {
+    // What the GI mode's lighting depends on: historyDepth epochs, none before new settings.
+    std::uint32_t needed =
+        std::max<std::int64_t>(restartEpoch_, std::int64_t(epoch_) - historyDepth_);
+    // Frames open at an older epoch may still need a client for their tiles; frames open in
+    // order, so the first holds the oldest epoch.
+    if (!frameEpochs_.empty()) needed = std::min(needed, frameEpochs_.begin()->second);
+    while (baseEpoch_ < needed) {
         applyChanges(base_, history_.front().changes);
         baseFirstFrame_ = history_.front().firstFrame;
         ++baseEpoch_;
-        baseFresh_ = false;
         history_.pop_front();
     }
-}
-
-void SceneTimeline::restartHistory(std::uint32_t frame) {
-    // Clients start the lighting afresh at new settings (a session started with them here
-    // would have no past): a joiner needs nothing before this epoch. The new settings may keep
-    // more or less of what follows.
-    base_ = state_;
-    baseEpoch_ = epoch_;
-    baseFirstFrame_ = frame;
-    baseFresh_ = true;
-    history_.clear();
-    historyDepth_ = joinHistoryDepth(state_.render);
 }
 
 SceneTimeline::Join SceneTimeline::join() const {

@@ -43,8 +43,8 @@ class SceneTimeline {
 
     /// The epoch a begun frame renders.
     std::uint32_t epochOf(std::uint32_t frame) const { return frameEpochs_.at(frame); }
-    /// Forgets a finished frame.
-    void endFrame(std::uint32_t frame) { frameEpochs_.erase(frame); }
+    /// Forgets a finished frame: a joiner no longer needs its epoch.
+    void endFrame(std::uint32_t frame);
 
     std::uint32_t epoch() const { return epoch_; }
     const SceneState& state() const { return state_; }
@@ -57,8 +57,10 @@ class SceneTimeline {
         std::vector<SceneChange> changes;
     };
     /// What a joining client needs: the changes that bring a freshly loaded scene to the base
-    /// epoch (the current one minus the history kept), the frame the base began at, and the
-    /// epochs since, at most historyDepth of them.
+    /// epoch, the frame the base began at, and the epochs since. The base is historyDepth
+    /// epochs back (not past the last settings change), or the epoch of the oldest frame still
+    /// open if that is older: a joiner may be given any tile of an open frame, whichever epoch
+    /// it renders, when the client holding it leaves.
     struct Join {
         std::vector<SceneChange> changes;
         std::uint32_t baseFirstFrame = 0;
@@ -68,14 +70,13 @@ class SceneTimeline {
     /// Whether the history kept reaches back to where the lighting started: the loaded scene
     /// (epoch 0) or the last change of the render settings, from which every client starts
     /// afresh.
-    bool historyComplete() const { return baseFresh_; }
+    bool historyComplete() const { return baseEpoch_ <= restartEpoch_; }
+    /// The oldest epoch a joiner gets (the Join's base).
+    std::uint32_t baseEpoch() const { return baseEpoch_; }
 
   private:
-    /// An epoch that continues the lighting of the one before: kept for joiners, as deep as
-    /// the GI mode needs.
-    void keepInHistory(std::uint32_t frame, const std::vector<SceneChange>& changes);
-    /// An epoch of new render settings, begun at `frame`: the base of every join from now on.
-    void restartHistory(std::uint32_t frame);
+    /// Moves the base forward, past the epochs no joiner needs any more (see Join).
+    void forgetOldEpochs();
 
     SceneState loaded_;
     SceneState controlled_;  ///< loaded + every control change so far
@@ -83,8 +84,8 @@ class SceneTimeline {
     std::uint32_t historyDepth_;
     SceneState base_;  ///< the state of the oldest epoch whose successors are kept
     std::uint32_t baseEpoch_ = 0, baseFirstFrame_ = 0;
-    bool baseFresh_ = true;      ///< the base is epoch 0 or a settings change
-    std::deque<Epoch> history_;  ///< the epochs after the base, oldest first
+    std::uint32_t restartEpoch_ = 0;  ///< epoch 0, or the last that changed the settings
+    std::deque<Epoch> history_;       ///< the epochs after the base, oldest first
     std::unique_ptr<Animation> animation_;
     std::uint32_t epoch_ = 0;
     std::map<std::uint32_t, std::uint32_t> frameEpochs_;

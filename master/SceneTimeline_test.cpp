@@ -13,6 +13,12 @@ SceneState twoObjects() {
     return s;
 }
 
+// A frame begun and finished before the next begins.
+void render(SceneTimeline& timeline, std::uint32_t frame) {
+    timeline.beginFrame(frame);
+    timeline.endFrame(frame);
+}
+
 std::vector<SceneChange> moveTo(std::uint32_t mesh, float x) {
     Transform t;
     t.translate.x = x;
@@ -25,12 +31,12 @@ TEST(SceneTimeline, AJoinerGetsTheChangedEnvironment) {
     loaded.environment.texture = 0;
     loaded.environment.radiance = glm::vec3(1.0f);
     SceneTimeline timeline(loaded, nullptr);
-    timeline.beginFrame(0);
+    render(timeline, 0);
     Environment brighter = loaded.environment;
     brighter.radiance = glm::vec3(4.0f);
     brighter.rotateDeg = 15.0f;
     timeline.control({EnvironmentChange{brighter}});
-    timeline.beginFrame(1);
+    render(timeline, 1);
     SceneState joined = loaded;
     applyChanges(joined, timeline.join().changes);
     EXPECT_EQ(joined.environment, brighter);
@@ -44,16 +50,16 @@ TEST(SceneTimeline, ASettingsChangeIsTheBaseOfEveryLaterJoin) {
     SceneState loaded = twoObjects();
     loaded.render.gi = GiMode::Spt;
     SceneTimeline timeline(loaded, nullptr, proto::kMaxHistoryEpochs);
-    timeline.beginFrame(0);
+    render(timeline, 0);
     timeline.control(moveTo(0, 1.0f));
-    timeline.beginFrame(1);  // epoch 1
+    render(timeline, 1);  // epoch 1
     EXPECT_EQ(timeline.join().history.size(), 1u);
     RenderSettings more = loaded.render;
     more.sptBudget = 12;
     timeline.control({SettingsChange{more}});
-    timeline.beginFrame(2);  // epoch 2: the new settings
+    render(timeline, 2);  // epoch 2: the new settings
     timeline.control(moveTo(1, 2.0f));
-    timeline.beginFrame(3);  // epoch 3 continues epoch 2's lighting
+    render(timeline, 3);  // epoch 3 continues epoch 2's lighting
     ASSERT_EQ(timeline.epoch(), 3u);
     const SceneTimeline::Join join = timeline.join();
     EXPECT_EQ(join.baseFirstFrame, 2u);
@@ -71,7 +77,7 @@ TEST(SceneTimeline, ASettingsChangeIsTheBaseOfEveryLaterJoin) {
 // A session started at frame F (--first-frame) begins its epoch 0 there.
 TEST(SceneTimeline, TheFirstEpochBeginsAtTheSessionsFirstFrame) {
     SceneTimeline timeline(twoObjects(), nullptr, 8, 40);
-    timeline.beginFrame(40);
+    render(timeline, 40);
     EXPECT_EQ(timeline.join().baseFirstFrame, 40u);
 }
 
@@ -80,11 +86,11 @@ TEST(SceneTimeline, TheFirstEpochBeginsAtTheSessionsFirstFrame) {
 TEST(SceneTimeline, AJoinerGetsTheLatestEpochsAndTheStateBeforeThem) {
     SceneTimeline timeline(twoObjects(), nullptr, 2);
     std::uint32_t frame = 0;
-    timeline.beginFrame(frame++);  // epoch 0
+    render(timeline, frame++);  // epoch 0
     for (int epoch = 1; epoch <= 4; ++epoch) {
         timeline.control(moveTo(std::uint32_t(epoch % 2), float(epoch)));
-        timeline.beginFrame(frame++);  // frames 1, 3, 5, 7 begin epochs 1 .. 4
-        timeline.beginFrame(frame++);  // and the scene holds for one more frame
+        render(timeline, frame++);  // frames 1, 3, 5, 7 begin epochs 1 .. 4
+        render(timeline, frame++);  // and the scene holds for one more frame
     }
     ASSERT_EQ(timeline.epoch(), 4u);
     const SceneTimeline::Join join = timeline.join();
@@ -103,9 +109,9 @@ TEST(SceneTimeline, AJoinerGetsTheLatestEpochsAndTheStateBeforeThem) {
 
 TEST(SceneTimeline, WithoutDepthAJoinerStartsInTheCurrentState) {
     SceneTimeline timeline(twoObjects(), nullptr);
-    timeline.beginFrame(0);
+    render(timeline, 0);
     timeline.control(moveTo(1, 3.0f));
-    timeline.beginFrame(1);
+    render(timeline, 1);
     const SceneTimeline::Join join = timeline.join();
     EXPECT_TRUE(join.history.empty());
     EXPECT_EQ(join.baseFirstFrame, 1u);
@@ -116,15 +122,72 @@ TEST(SceneTimeline, WithoutDepthAJoinerStartsInTheCurrentState) {
 
 TEST(SceneTimeline, AHistoryDeepEnoughReachesTheLoadedScene) {
     SceneTimeline timeline(twoObjects(), nullptr, 8);
-    timeline.beginFrame(0);
+    render(timeline, 0);
     timeline.control(moveTo(0, 1.0f));
-    timeline.beginFrame(1);
+    render(timeline, 1);
     const SceneTimeline::Join join = timeline.join();
     EXPECT_TRUE(timeline.historyComplete());
     EXPECT_TRUE(join.changes.empty());
     EXPECT_EQ(join.baseFirstFrame, 0u);
     ASSERT_EQ(join.history.size(), 1u);
     EXPECT_EQ(join.history[0].firstFrame, 1u);
+}
+
+// A joiner may get any tile of a frame still open when the client holding it leaves: it gets
+// every epoch of the open frames, past the depth its GI mode needs, until they are finished.
+TEST(SceneTimeline, AJoinerGetsTheEpochsOfTheFramesStillOpen) {
+    SceneTimeline timeline(twoObjects(), nullptr);
+    render(timeline, 0);
+    timeline.control(moveTo(0, 1.0f));
+    timeline.beginFrame(1);  // epoch 1, open
+    timeline.control(moveTo(0, 2.0f));
+    timeline.beginFrame(2);  // epoch 2, open
+    timeline.control(moveTo(0, 3.0f));
+    timeline.beginFrame(3);  // epoch 3, open
+    ASSERT_EQ(timeline.epoch(), 3u);
+    SceneTimeline::Join join = timeline.join();
+    EXPECT_EQ(timeline.baseEpoch(), 1u);
+    EXPECT_EQ(join.baseFirstFrame, 1u);
+    ASSERT_EQ(join.history.size(), 2u);
+    EXPECT_EQ(join.history[0].firstFrame, 2u);
+    EXPECT_EQ(join.history[1].firstFrame, 3u);
+    SceneState state = twoObjects();
+    applyChanges(state, join.changes);
+    EXPECT_EQ(state.transforms[0].translate.x, 1.0f) << "the base: frame 1's epoch";
+    for (const auto& e : join.history) applyChanges(state, e.changes);
+    EXPECT_EQ(state, timeline.state());
+
+    // Once they are finished, without depth, a joiner starts in the current state again.
+    timeline.endFrame(1);
+    EXPECT_EQ(timeline.baseEpoch(), 2u);
+    EXPECT_EQ(timeline.join().history.size(), 1u);
+    timeline.endFrame(2);
+    timeline.endFrame(3);
+    join = timeline.join();
+    EXPECT_EQ(timeline.baseEpoch(), 3u);
+    EXPECT_TRUE(join.history.empty());
+    state = twoObjects();
+    applyChanges(state, join.changes);
+    EXPECT_EQ(state, timeline.state());
+}
+
+// New settings bound what a joiner needs, but not below a frame still open.
+TEST(SceneTimeline, AFrameOpenBeforeNewSettingsKeepsItsEpochForJoiners) {
+    SceneState loaded = twoObjects();
+    SceneTimeline timeline(loaded, nullptr);
+    render(timeline, 0);
+    timeline.control(moveTo(0, 1.0f));
+    timeline.beginFrame(1);  // epoch 1, open
+    RenderSettings more = loaded.render;
+    more.vplPaths = 64;
+    timeline.control({SettingsChange{more}});
+    timeline.beginFrame(2);  // epoch 2: the new settings
+    EXPECT_EQ(timeline.baseEpoch(), 1u);
+    EXPECT_TRUE(timeline.historyComplete()) << "the settings epoch is in the history";
+    timeline.endFrame(1);
+    EXPECT_EQ(timeline.baseEpoch(), 2u);
+    EXPECT_TRUE(timeline.historyComplete());
+    EXPECT_EQ(timeline.join().baseFirstFrame, 2u);
 }
 
 // Joiners replay exactly the history their mode's lighting depends on: a stream window's

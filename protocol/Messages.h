@@ -91,6 +91,10 @@ struct EpochChanges {
 
 /// The most epochs of history a SceneData carries.
 constexpr std::uint32_t kMaxHistoryEpochs = 65536;
+/// The epochs a client keeps, the newest: tiles of frames still open may render older epochs
+/// than the newest (at most four frames are open at once). The master gives a client no tile
+/// of an epoch older than these.
+constexpr std::uint32_t kClientKeptEpochs = 8;
 
 struct SceneData {
     SceneBundle bundle;

@@ -119,6 +119,55 @@ TEST(Faults, AClientWhoseConnectionIsCutComesBackAndNothingIsLost) {
     if (!HasFailure()) fs::remove_all(dir);  // kept for a look when it failed
 }
 
+// A client that joins while another holds tiles of frames of older epochs than the newest (an
+// animation makes every frame a new epoch) must be able to finish them when that client dies:
+// it gets every epoch of the frames open. One tile per frame (no interleaving, a tile over the
+// whole image): the stopped client holds tiles of two frames at least, whatever the timing.
+TEST(Faults, AJoinerFinishesTheOlderFramesOfAClientThatDied) {
+    const fs::path dir = scratchDir("join-old-epochs");
+    const fs::path secret = dir / "secret", slide = dir / "slide.json";
+    std::ofstream(secret) << "the render cluster's shared secret\n";
+    std::ofstream(slide) << R"({"objects": {"mirror_box": [)"
+                         << R"({"frame": 0, "translate": [-0.38, 0, -0.3]},)"
+                         << R"({"frame": 5000, "translate": [0.3, 0, -0.3]}]}})";
+    const std::vector<std::string> shape = {"--animation", slide.string(), "--interleave", "1x1",
+                                            "--filter",    "1x1",          "--tile-size",  "256"};
+    std::vector<std::string> extra = shape;
+    extra.insert(extra.end(), {"--local-clients", "1", "--secret-file", secret.string()});
+    OpenSession session(dir, extra);
+    ASSERT_TRUE(session.started()) << readFile(session.log);
+    const pid_t victim = localClientPid(session, 1);
+    ASSERT_GT(victim, 0) << readFile(session.log);
+    ASSERT_TRUE(session.waitFrames(3)) << readFile(session.log);
+
+    ASSERT_EQ(kill(victim, SIGSTOP), 0);
+    // Long enough for the master to read what it sent before the stop and to give it the
+    // tiles it holds from then on; nothing finishes after that.
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    const int stalledAfter = session.lastFrame();
+    const pid_t joiner =
+        spawnProcess(clientCommand({"--connect", "127.0.0.1:" + session.port, "--threads", "1",
+                                    "--secret-file", secret.string()}),
+                     dir / "joiner.log");
+    ASSERT_GT(joiner, 0);
+    ASSERT_FALSE(
+        waitForLine(session.log, std::regex(R"(client 2 \(.*\) is ready)"), session.master).empty())
+        << readFile(session.log) << readFile(dir / "joiner.log");
+    ASSERT_EQ(kill(victim, SIGKILL), 0);
+    ASSERT_TRUE(session.waitFrames(3)) << "the frames the dead client held were never finished:\n"
+                                       << readFile(session.log) << readFile(dir / "joiner.log");
+    const int frames = session.stop();
+    ASSERT_GT(frames, 0) << readFile(session.log);
+    EXPECT_EQ(waitProcess(joiner, 30), 0) << readFile(dir / "joiner.log");
+    std::ifstream statsFile(dir / "stats.json");
+    const auto stats = nlohmann::json::parse(statsFile);
+    ASSERT_EQ(stats["clients"].size(), 2u);
+    EXPECT_EQ(stats["clients"][1]["first_frame"].get<std::int64_t>(), stalledAfter + 1)
+        << "the joiner's first tile is of the oldest frame the stopped client held";
+    expectSameAsUndisturbed(dir, frames, shape);
+    if (!HasFailure()) fs::remove_all(dir);  // kept for a look when it failed
+}
+
 TEST(Faults, AMasterRestartedWhileItsClientsRunGetsThemBack) {
     const fs::path dir = scratchDir("restart");
     const fs::path secret = dir / "secret";

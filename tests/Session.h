@@ -132,10 +132,14 @@ inline int freePort() {
 
 /// dir/faulty.exr equals the image of the same scene rendered undisturbed, by one local client,
 /// for `frames` frames.
-inline void expectSameAsUndisturbed(const std::filesystem::path& dir, int frames) {
+/// `extra`: the arguments of the disturbed session that shape its image (an animation, the
+/// tiles).
+inline void expectSameAsUndisturbed(const std::filesystem::path& dir, int frames,
+                                    const std::vector<std::string>& extra = {}) {
     auto args = sceneArgs(frames);
     args.insert(args.end(),
                 {"--local-clients", "1", "--output", (dir / "undisturbed.exr").string()});
+    args.insert(args.end(), extra.begin(), extra.end());
     const ProcessResult r = runProcess(masterCommand(args), dir / "undisturbed.log");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     expectSameImage(dir / "faulty.exr", dir / "undisturbed.exr");
