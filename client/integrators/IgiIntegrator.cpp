@@ -28,7 +28,11 @@ glm::vec3 emittedToward(const SurfacePoint& hit, glm::vec3 wo) {
 
 IgiIntegrator::IgiIntegrator(const TraceableScene& scene, const Lights& lights,
                              const RenderSettings& settings, const CameraModel& camera)
-    : scene_(scene), settings_(settings), camera_(camera), shader_(scene, lights, settings) {}
+    : scene_(scene),
+      lights_(lights),
+      settings_(settings),
+      camera_(camera),
+      shader_(scene, lights, settings) {}
 
 /// One pixel's eye path through the phases of shade(): its numbers, the eye ray's hit, its end
 /// points and what each queued.
@@ -95,7 +99,7 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
     const bool sky = scene_.hasSky();
     for (int i = 0; i < count; ++i) {
         if (paths[std::size_t(i)].found)
-            splitAtFirstHit(paths[std::size_t(i)], i, results[i], continuations);
+            splitAtFirstHit(paths[std::size_t(i)], i, results[i], continuations, counters);
         else if (sky)  // the camera sees the sky, unfiltered
             results[i].unfiltered += scene_.skyRadiance(paths[std::size_t(i)].direction);
     }
@@ -166,7 +170,8 @@ void IgiIntegrator::traceInPackets(int count, Ray&& ray, Land&& land, RayCounter
 }
 
 void IgiIntegrator::splitAtFirstHit(PixelPath& p, int pixel, PixelResult& result,
-                                    std::vector<Continuation>& continuations) const {
+                                    std::vector<Continuation>& continuations,
+                                    RayCounters& counters) const {
     const SurfacePoint& hit = p.hit;
     const glm::vec3 wo = -p.direction;
     result.unfiltered += emittedToward(hit, wo);
@@ -188,6 +193,8 @@ void IgiIntegrator::splitAtFirstHit(PixelPath& p, int pixel, PixelResult& result
             PathRandom random(p.sampler, p.nextNumber);
             u = random.next2();
             uChoice = random.next();
+            if (lights_.hasDeltaLights())
+                result.unfiltered += roughGlassDeltaLight(hit, lobes, random, counters);
             p.nextNumber = random.position();
         }
         if (!sampleLobe(lobes, deltas[i], u, uChoice, next, weight)) continue;
@@ -201,6 +208,14 @@ void IgiIntegrator::splitAtFirstHit(PixelPath& p, int pixel, PixelResult& result
     }
 }
 
+glm::vec3 IgiIntegrator::roughGlassDeltaLight(const SurfacePoint& hit, const Lobes& lobes,
+                                              PathRandom& random, RayCounters& counters) const {
+    const float uSelect = random.next();
+    const glm::vec2 uPoint = random.next2();
+    return roughGlassLight(scene_, lights_, hit, lobes, uSelect, uPoint,
+                           RoughGlassLights::DeltaOnly, counters);
+}
+
 void IgiIntegrator::followChains(PixelPath& p, int pixel,
                                  const std::vector<Continuation>& continuations, std::size_t& next,
                                  PixelResult& result, RayCounters& counters) const {
@@ -211,9 +226,15 @@ void IgiIntegrator::followChains(PixelPath& p, int pixel,
             result.unfiltered += c.weight * scene_.skyRadiance(c.direction);
             continue;
         }
+        // Without delta lights nothing is drawn for them: such scenes keep their numbers.
         p.ends[c.end] = followDeltaChainFrom(
             scene_, c.hit, c.direction, c.weight, p.hit.distance, settings_.maxEyeDepth,
-            [&] { return random.next(); }, result.unfiltered, counters);
+            [&] { return random.next(); }, result.unfiltered, counters,
+            [&](const SurfacePoint& hit, const Lobes& lobes, glm::vec3 throughput) {
+                if (lights_.hasDeltaLights())
+                    result.unfiltered +=
+                        throughput * roughGlassDeltaLight(hit, lobes, random, counters);
+            });
     }
     p.nextNumber = random.position();
 

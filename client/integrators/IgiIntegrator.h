@@ -5,8 +5,10 @@
 #include <vector>
 
 #include "integrators/EndPointShader.h"
+#include "integrators/PathRandom.h"
 #include "integrators/PixelResult.h"
 #include "integrators/PixelSampler.h"
+#include "integrators/RoughGlassLight.h"
 #include "lighting/LightingSet.h"
 #include "lights/Lights.h"
 #include "render/RenderSettings.h"
@@ -56,9 +58,10 @@ class IgiIntegrator {
     template <class Ray, class Land>
     void traceInPackets(int count, Ray&& ray, Land&& land, RayCounters& counters) const;
     /// The first hit's emission, its non-delta end point, and the rays that leave it along its
-    /// mirror and glass lobes (appended to `continuations`).
+    /// mirror and glass lobes (appended to `continuations`); on rough glass, the light of
+    /// delta lights through it (roughGlassDeltaLight).
     void splitAtFirstHit(PixelPath& path, int pixel, PixelResult& result,
-                         std::vector<Continuation>& continuations) const;
+                         std::vector<Continuation>& continuations, RayCounters& counters) const;
     /// The pixel's mirror and glass paths from where their first rays landed (continuations
     /// from `next` on, advanced past the pixel's), then the end point the master filters.
     void followChains(PixelPath& path, int pixel, const std::vector<Continuation>& continuations,
@@ -66,7 +69,14 @@ class IgiIntegrator {
     void shadeEnds(PixelPath& path, const LightingSet& set, const ShadowQueue& queue,
                    PixelResult& result, RayCounters& counters) const;
 
+    /// What point, spot and sun lights (deltas, which no sampled direction hits) send through
+    /// rough glass at `hit` toward the eye, by one light sample on the pixel's numbers: the
+    /// continuation, sampled from the BSDF, carries every other light.
+    glm::vec3 roughGlassDeltaLight(const SurfacePoint& hit, const Lobes& lobes, PathRandom& random,
+                                   RayCounters& counters) const;
+
     const TraceableScene& scene_;
+    const Lights& lights_;
     RenderSettings settings_;
     const CameraModel& camera_;
     EndPointShader shader_;

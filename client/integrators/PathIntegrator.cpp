@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "integrators/PixelSampler.h"
+#include "integrators/RoughGlassLight.h"
 #include "math/Color.h"
 #include "math/Frame.h"
 #include "math/Warp.h"
@@ -108,8 +109,9 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
             // Rough glass (its only lobe): a light sample through its BSDF, on either side, and
             // a direction sampled from it, weighted against each other as the BRDF's are.
             radiance += beta / probability *
-                        roughGlassLight(hit, lobes, sampler.get(dim + 3),
-                                        {sampler.get(dim + 4), sampler.get(dim + 5)}, counters);
+                        roughGlassLight(scene_, lights_, hit, lobes, sampler.get(dim + 3),
+                                        {sampler.get(dim + 4), sampler.get(dim + 5)},
+                                        RoughGlassLights::All, counters);
             glm::vec3 weight;
             if (!sampleLobe(lobes, lobe, u, sampler.get(dim + 7), direction, weight)) break;
             const float pdf = roughGlassPdf(lobes, direction);
@@ -118,7 +120,7 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
             lastWasNonDelta = true;
             lastPdf = pdf;
             lastPosition = hit.position;
-            lastNormal = lobes.normal;
+            lastNormal = glm::vec3(0.0f);  // its light sample chose on both sides (RoughGlassLight)
         } else {
             glm::vec3 weight;
             if (!sampleLobe(lobes, lobe, u, 0.5f, direction, weight)) break;
@@ -160,40 +162,6 @@ glm::vec3 PathIntegrator::directLight(const SurfacePoint& hit, const Lobes& lobe
     if (ls.isPoint) return f * ls.emitted * (cosX * cosY / (d2 * ls.pdf));
     const float lightPdf = ls.pdf * d2 / cosY;  // solid angle
     const float weight = powerHeuristic(lightPdf, b.pdf(w));
-    return f * ls.emitted * (cosX * weight / lightPdf);
-}
-
-glm::vec3 PathIntegrator::roughGlassLight(const SurfacePoint& hit, const Lobes& lobes,
-                                          float uSelect, glm::vec2 uPoint,
-                                          RayCounters& counters) const {
-    // directLight's arithmetic with the rough glass's BSDF, whose light may come from below the
-    // surface (refraction): the shadow ray leaves from the side it goes to.
-    const LightSample ls = lights_.sampleAt(hit.position, lobes.normal, uSelect, uPoint);
-    if (!(ls.pdf > 0)) return glm::vec3(0.0f);
-    const glm::vec3 toLight0 = ls.position - hit.position;
-    if (!(glm::dot(toLight0, toLight0) > 0)) return glm::vec3(0.0f);
-    const glm::vec3 side =
-        glm::dot(toLight0, lobes.faceNormal) >= 0 ? lobes.faceNormal : -lobes.faceNormal;
-    const glm::vec3 shadowOrigin = scene_.offsetOrigin(hit.position, side);
-    const glm::vec3 toLight = ls.position - shadowOrigin;
-    const float d2 = glm::dot(toLight, toLight);
-    const float d = std::sqrt(d2);
-    if (!(d > 0)) return glm::vec3(0.0f);
-    const glm::vec3 w = toLight / d;
-    const float cosX = std::abs(glm::dot(w, lobes.normal));
-    const float cosY = !ls.isPoint ? -glm::dot(w, ls.normal)
-                       : ls.spot   ? spotRamp(ls.cosOuter, ls.spotScale, -glm::dot(w, ls.normal))
-                                   : 1.0f;
-    if (!(cosX > 0) || cosY <= 0 || glm::dot(w, side) <= 0) return glm::vec3(0.0f);
-    const glm::vec3 f = roughGlassValue(lobes, w);
-    if (isBlack(f)) return glm::vec3(0.0f);
-    const glm::vec3 target = ls.isPoint ? ls.position : scene_.offsetOrigin(ls.position, ls.normal);
-    const float distance = glm::length(target - shadowOrigin);
-    if (scene_.occluded(shadowOrigin, w, distance * (1.0f - 1e-4f), counters))
-        return glm::vec3(0.0f);
-    if (ls.isPoint) return f * ls.emitted * (cosX * cosY / (d2 * ls.pdf));
-    const float lightPdf = ls.pdf * d2 / cosY;  // solid angle
-    const float weight = powerHeuristic(lightPdf, roughGlassPdf(lobes, w));
     return f * ls.emitted * (cosX * weight / lightPdf);
 }
 

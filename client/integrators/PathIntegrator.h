@@ -30,9 +30,6 @@ class PathIntegrator {
     /// One light sample's contribution through the non-delta BRDF, MIS-weighted.
     glm::vec3 directLight(const SurfacePoint& hit, const Lobes& lobes, float uSelect,
                           glm::vec2 uPoint, RayCounters& counters) const;
-    /// The same through rough glass's BSDF (lights on either side of it).
-    glm::vec3 roughGlassLight(const SurfacePoint& hit, const Lobes& lobes, float uSelect,
-                              glm::vec2 uPoint, RayCounters& counters) const;
 
     const TraceableScene& scene_;
     const Lights& lights_;

@@ -136,6 +136,8 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
         treePower.push_back(e.kind == Kind::Directional
                                 ? 4.0f * kPi * luminance(p.intensity) * sunDistance * sunDistance
                                 : power.back());
+        // A sun with an angle is a disk in the sky (pointOn); the others are points.
+        if (!(e.kind == Kind::Directional && e.oneMinusCos > 0)) hasDeltaLights_ = true;
         emitters_.push_back(e);
     }
     if (traceable.environment().present()) {

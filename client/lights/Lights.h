@@ -92,6 +92,9 @@ class Lights {
     /// The density (solid angle) with which sampleAt(p, n) picks the environment in the
     /// direction `toSky`, for multiple importance sampling; 0 without one.
     float environmentPdfAt(glm::vec3 p, glm::vec3 n, glm::vec3 toSky) const;
+    /// Whether some light is a delta in position or direction (point, spot, a sun without an
+    /// angle): one that only a light sample finds, never a sampled direction.
+    bool hasDeltaLights() const { return hasDeltaLights_; }
     /// Whether some soft sun is on (its disk is seen in the sky: SunDisk).
     bool hasSuns() const { return !suns_.empty(); }
     /// The radiance of the suns' disks that a direction sampled from a BRDF at p (normal n)
@@ -158,6 +161,7 @@ class Lights {
     glm::vec3 boxLo_{0.0f}, boxHi_{0.0f};  ///< the scene's box, for parallelStart
     bool hasBox_ = false;
     bool hasDirectional_ = false;
+    bool hasDeltaLights_ = false;
 };
 
 /// A light sample as the point light that one of `samples` direct-light shadow rays goes to: its

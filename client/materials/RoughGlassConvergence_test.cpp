@@ -195,6 +195,44 @@ TEST(RoughGlassFurnace, ASphereOfClearGlassConvergesToTheSkyLessTheSingleScatter
     }
 }
 
+// The sum of an image's values (its light, every pixel).
+double imageSum(const Image& image) {
+    double sum = 0;
+    for (const glm::vec3& v : image.pixels) sum += double(v.x + v.y + v.z);
+    return sum;
+}
+
+// Point lights reach the eye through and off rough glass only by light samples taken at the
+// glass: no direction sampled from its BSDF hits a point. A rough glass sphere in the dark, lit
+// by a point light beside the camera (its highlight) and one behind the sphere (its light
+// through two interfaces), with nothing else to make VPLs on: IGI's eye path samples them
+// where it meets the glass (the first hit and every vertex inside), and must agree with the
+// path tracer. Without those samples IGI saw the sphere black.
+TEST(RoughGlassConvergence, PointLightsShowThroughAndOffRoughGlass) {
+    for (const float roughness : {0.5f, 0.8f}) {
+        Scene scene = roughSphereInTheSky(roughness);
+        scene.environment.radiance = glm::vec3(0.0f);
+        scene.punctualLights.push_back(
+            pointLight("front", glm::vec3(1.5f, 1.0f, 4.0f), glm::vec3(10.0f)));
+        scene.punctualLights.push_back(
+            pointLight("behind", glm::vec3(0.3f, -0.2f, -3.0f), glm::vec3(10.0f)));
+        scene.render.integrator = IntegratorKind::Path;
+        scene.render.pathSamples = 64;
+        InProcessRenderer path(scene);
+        const double pathSum = imageSum(path.render(64));
+        scene.render.integrator = IntegratorKind::Igi;
+        InProcessRenderer igi(scene);
+        const double igiSum = imageSum(igi.render(1024));
+        std::printf(
+            "rough glass sphere %.1f lit by two point lights, the image's sum: path tracer %.4f, "
+            "IGI %.4f\n",
+            double(roughness), pathSum, igiSum);
+        EXPECT_EQ(path.nonFiniteValues() + igi.nonFiniteValues(), 0u);
+        ASSERT_GT(pathSum, 1.0) << "the lights do not reach the eye: the test shows nothing";
+        EXPECT_NEAR(igiSum / pathSum, 1.0, 0.03) << "roughness " << roughness;
+    }
+}
+
 Scene roughGlassCornell(float roughness) {
     Scene scene = loadSceneFile(testing::sourceDir() / "scenes/cornell/cornell.json");
     scene.image.width = 64;

@@ -38,12 +38,15 @@ inline float nonDeltaProbability(const Lobes& l) {
 /// throughput * Le to `emitted`, and so does the sky where the path leaves the scene. Nothing
 /// when the path leaves the scene, is absorbed, or has
 /// not ended after `maxHits` intersections (the first hit counts as one).
-template <typename Next>
+/// `atRoughGlass(hit, lobes, throughput)` is called at every vertex where the path goes on
+/// through rough glass, with the throughput up to it (its lobe's choice included), before the
+/// path leaves it: IGI adds the light that only a light sample finds there.
+template <typename Next, typename AtRoughGlass>
 std::optional<ChainEnd> followDeltaChainFrom(const TraceableScene& scene,
                                              const SurfacePoint& firstHit, glm::vec3 direction,
                                              glm::vec3 throughput, float pathLength, int maxHits,
-                                             Next&& next, glm::vec3& emitted,
-                                             RayCounters& counters) {
+                                             Next&& next, glm::vec3& emitted, RayCounters& counters,
+                                             AtRoughGlass&& atRoughGlass) {
     constexpr float kInfinity = std::numeric_limits<float>::infinity();
     ChainEnd end;
     end.hit = firstHit;
@@ -64,6 +67,8 @@ std::optional<ChainEnd> followDeltaChainFrom(const TraceableScene& scene,
         if (hits >= maxHits) return std::nullopt;
         glm::vec3 weight;
         const float u0 = next(), u1 = next();
+        if (lobe == Lobe::Transmission && end.lobes.roughGlass())
+            atRoughGlass(end.hit, end.lobes, throughput / probability);
         // Rough glass chooses between reflection and refraction with the lobe's number again.
         if (!sampleLobe(end.lobes, lobe, {u0, u1}, remapChoice(uLobe, probability), direction,
                         weight))
@@ -77,6 +82,18 @@ std::optional<ChainEnd> followDeltaChainFrom(const TraceableScene& scene,
             return std::nullopt;
         }
     }
+}
+
+/// followDeltaChainFrom with nothing added at rough glass.
+template <typename Next>
+std::optional<ChainEnd> followDeltaChainFrom(const TraceableScene& scene,
+                                             const SurfacePoint& firstHit, glm::vec3 direction,
+                                             glm::vec3 throughput, float pathLength, int maxHits,
+                                             Next&& next, glm::vec3& emitted,
+                                             RayCounters& counters) {
+    return followDeltaChainFrom(scene, firstHit, direction, throughput, pathLength, maxHits,
+                                std::forward<Next>(next), emitted, counters,
+                                [](const SurfacePoint&, const Lobes&, glm::vec3) {});
 }
 
 /// followDeltaChainFrom where the ray from `origin` along `direction` lands (nothing if it
