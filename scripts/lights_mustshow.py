@@ -200,8 +200,8 @@ def luminance(img):
     return 0.2126 * img[..., 0] + 0.7152 * img[..., 1] + 0.0722 * img[..., 2]
 
 
-def side_by_side(ours, theirs, out_png, labels):
-    """IGI | Cycles | signed difference of luminance over the reference's mean, at 2x."""
+def side_by_side(ours, theirs, out_png, labels, zoom=2):
+    """IGI | Cycles | signed difference of luminance over the reference's mean, at `zoom` x."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -219,7 +219,7 @@ def side_by_side(ours, theirs, out_png, labels):
 
     diff = (luminance(a) - luminance(b)) / max(mean, 1e-12)
     h, w = b.shape[:2]
-    fig, axes = plt.subplots(1, 3, figsize=(3 * w / 50, h / 50 + 0.5), dpi=100)
+    fig, axes = plt.subplots(1, 3, figsize=(3 * w * zoom / 100, h * zoom / 100 + 0.5), dpi=100)
     for ax, img, title in ((axes[0], tone(a), labels[0]), (axes[1], tone(b), labels[1])):
         ax.imshow(img, interpolation="nearest")
         ax.set_title(title, fontsize=8)
