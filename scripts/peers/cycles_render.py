@@ -275,12 +275,15 @@ def _lambert_diffuse(material, principled):
     transmission) + the specular lobes, the diffuse not weighted by the specular's Fresnel.
     Swapped: the Principled with a black base colour (its specular lobes only: specular tint 0,
     as the importer leaves it) plus a Diffuse BSDF of roughness 0 (Lambert) with that base colour
-    times the same weight and the same normal. Only for opaque materials with constant metallic
-    and transmission (the Burley scene's); others are left as they are, with a message."""
+    times the same weight and the same normal. Only for opaque dielectrics (metallic 0) with
+    constant transmission (the Burley scene's); others are left as they are, with a message."""
     nodes, links = material.node_tree.nodes, material.node_tree.links
     ins = principled.inputs
     if ins["Metallic"].is_linked or ins["Transmission"].is_linked or ins["Alpha"].is_linked \
-            or ins["Alpha"].default_value < 1 or ins["Subsurface"].default_value > 0:
+            or ins["Alpha"].default_value < 1 or ins["Subsurface"].default_value > 0 \
+            or ins["Metallic"].default_value > 0:
+        # A metallic > 0 takes its specular colour from the base colour, which the swap blackens;
+        # metallic 1 has no diffuse lobe to swap.
         print(f"cycles: {material.name}: diffuse left as Burley (not a constant opaque dielectric)", flush=True)
         return
     weight = (1 - ins["Metallic"].default_value) * (1 - ins["Transmission"].default_value)
@@ -327,6 +330,7 @@ def _import_gltf(model):
     if not hasattr(numpy, "bool"):
         numpy.bool = bool  # Blender 3.4's importer uses numpy.bool, gone from numpy >= 1.24
     before = set(bpy.data.objects)
+    images_before = set(bpy.data.images)
     options = {}
     props = bpy.ops.import_scene.gltf.get_rna_type().properties
     for name in ("convert_lighting_mode", "export_import_convert_lighting_mode"):
@@ -334,6 +338,12 @@ def _import_gltf(model):
             options[name] = "SPEC"
     bpy.ops.import_scene.gltf(filepath=model["file"], **options)
     new = [o for o in bpy.data.objects if o not in before]
+    for image in bpy.data.images:
+        if image not in images_before:
+            # glTF colours are not premultiplied by alpha, and OPAQUE ignores alpha altogether;
+            # a Cycles image texture whose Alpha output is unused returns its colour premultiplied
+            # (black where alpha is 0) unless the image's alpha is "channel packed".
+            image.alpha_mode = "CHANNEL_PACKED"
     seen = set()
     root = bpy.data.objects.new(model["name"] + "_root", None)
     bpy.context.scene.collection.objects.link(root)
