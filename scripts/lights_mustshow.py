@@ -200,8 +200,8 @@ def luminance(img):
     return 0.2126 * img[..., 0] + 0.7152 * img[..., 1] + 0.0722 * img[..., 2]
 
 
-def side_by_side(ours, theirs, out_png, labels):
-    """IGI | Cycles | signed difference of luminance over the reference's mean, at 2x."""
+def side_by_side(ours, theirs, out_png, labels, zoom=2):
+    """IGI | Cycles | signed difference of luminance over the reference's mean, at `zoom` x."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -219,7 +219,7 @@ def side_by_side(ours, theirs, out_png, labels):
 
     diff = (luminance(a) - luminance(b)) / max(mean, 1e-12)
     h, w = b.shape[:2]
-    fig, axes = plt.subplots(1, 3, figsize=(3 * w / 50, h / 50 + 0.5), dpi=100)
+    fig, axes = plt.subplots(1, 3, figsize=(3 * w * zoom / 100, h * zoom / 100 + 0.5), dpi=100)
     for ax, img, title in ((axes[0], tone(a), labels[0]), (axes[1], tone(b), labels[1])):
         ax.imshow(img, interpolation="nearest")
         ax.set_title(title, fontsize=8)
@@ -519,34 +519,57 @@ def markdown(results, a, command, started, seconds):
     return "\n".join(lines)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def common_args(ap, tag, scenes, width, height, ref_spp):
+    """The options this script shares with scripts/materials_mustshow.py: renders under
+    build/<tag>_mustshow, docs under docs/<tag>."""
     ap.add_argument("--build", default=os.path.join(ROOT, "build"), help="where bin/igi-master is")
-    ap.add_argument("--out", default=os.path.join(ROOT, "build", "lights_mustshow"))
-    ap.add_argument("--docs", default=os.path.join(ROOT, "docs", "lights"))
-    ap.add_argument("--width", type=int, default=160)
-    ap.add_argument("--height", type=int, default=120)
+    ap.add_argument("--out", default=os.path.join(ROOT, "build", f"{tag}_mustshow"))
+    ap.add_argument("--docs", default=os.path.join(ROOT, "docs", tag))
+    ap.add_argument("--width", type=int, default=width)
+    ap.add_argument("--height", type=int, default=height)
     ap.add_argument("--frames", type=int, default=256)
     ap.add_argument("--pt-spp", type=int, default=64)
     ap.add_argument("--pt-frames", type=int, default=64)
     ap.add_argument("--cycles-spp", type=int, default=256)
-    ap.add_argument("--ref-spp", type=int, default=1024)
-    ap.add_argument("--cycles-max-spp", type=int, default=16384)
-    ap.add_argument("--seconds", type=float, default=60)
+    ap.add_argument("--ref-spp", type=int, default=ref_spp, help="a scene may ask for fewer (its ref_spp)")
     ap.add_argument("--threads", type=int, default=2)
-    ap.add_argument("--scenes", default=",".join(s["name"] for s in SCENES))
-    ap.add_argument("--variants", action="store_true")
-    ap.add_argument("--no-curve", action="store_true", help="no relMSE-against-time curve (and no sun_paths.py)")
+    ap.add_argument("--scenes", default=",".join(s["name"] for s in scenes))
     ap.add_argument("--rerun", action="store_true")
     ap.add_argument("--cycles-only", action="store_true",
                     help="render Cycles' images only (they need no build: run it while building), no report")
     ap.add_argument("--no-docs", action="store_true", help="print only; leave docs/ alone")
+
+
+def parse(ap):
     a = ap.parse_args()
     a.out = os.path.abspath(a.out)
     if a.no_docs:
         a.docs = None
     else:
         os.makedirs(a.docs, exist_ok=True)
+    return a
+
+
+def write_results(docs, payload, rows):
+    """docs/<tag>/results.json (the figures) and results.csv (every point, in
+    accuracy_report.py's columns)."""
+    with open(os.path.join(docs, "results.json"), "w") as f:
+        json.dump(payload, f, indent=1)
+    with open(os.path.join(docs, "results.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=["scene", "renderer", "sweep", "value", "frames", "time", "relmse",
+                                          "ssim", "bias", "reference"])
+        w.writeheader()
+        w.writerows(rows)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    common_args(ap, "lights", SCENES, 160, 120, 1024)
+    ap.add_argument("--cycles-max-spp", type=int, default=16384)
+    ap.add_argument("--seconds", type=float, default=60)
+    ap.add_argument("--variants", action="store_true")
+    ap.add_argument("--no-curve", action="store_true", help="no relMSE-against-time curve (and no sun_paths.py)")
+    a = parse(ap)
     started, t0 = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), time.time()
     r = Runner(a)
     wanted = a.scenes.split(",")
@@ -583,13 +606,7 @@ def main():
 
 
 def write_docs(a, results, rows, started, t0):
-    with open(os.path.join(a.docs, "results.json"), "w") as f:
-        json.dump(results, f, indent=1)
-    with open(os.path.join(a.docs, "results.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=["scene", "renderer", "sweep", "value", "frames", "time", "relmse",
-                                          "ssim", "bias", "reference"])
-        w.writeheader()
-        w.writerows(rows)
+    write_results(a.docs, results, rows)
     command = "scripts/lights_mustshow.sh" + (" " + " ".join(sys.argv[1:]) if sys.argv[1:] else "")
     block = markdown(results, a, command, started, time.time() - t0)
     doc = os.path.join(ROOT, "docs", "LIGHTS.md")

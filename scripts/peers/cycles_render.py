@@ -74,6 +74,66 @@ def _image(path):
     return _IMAGES[path]
 
 
+def _bump_normal(nodes, links, path, scale):
+    """Our height map (client/materials/BumpMap.h) as a shading normal: the tangent-space normal
+    (-scale dh/du, -scale dh/dv, 1), slopes by central differences one texel apart in height per
+    texel (h: the mean of the linear channels, bilinear, wrapping), into a tangent-space Normal
+    Map node on the UV map (Blender's MikkTSpace tangents; ours come from each triangle's uv
+    derivatives). Cycles' own Bump node differentiates in screen space per unit of length,
+    which would tie the tilt to the scene's scale; this does not."""
+    image = bpy.data.images.load(path, check_existing=False)
+    image.colorspace_settings.name = "Non-Color"
+    w, h = max(image.size[0], 1), max(image.size[1], 1)
+    uv = nodes.new("ShaderNodeUVMap")
+    uv.uv_map = "UVMap"
+
+    def height_at(du, dv):
+        shift = nodes.new("ShaderNodeVectorMath")
+        shift.operation = "ADD"
+        shift.inputs[1].default_value = (du, dv, 0.0)
+        links.new(uv.outputs["UV"], shift.inputs[0])
+        tex = nodes.new("ShaderNodeTexImage")
+        tex.image = image
+        tex.interpolation = "Linear"
+        tex.extension = "REPEAT"
+        links.new(shift.outputs["Vector"], tex.inputs["Vector"])
+        mean = nodes.new("ShaderNodeVectorMath")
+        mean.operation = "DOT_PRODUCT"
+        mean.inputs[1].default_value = (1 / 3, 1 / 3, 1 / 3)
+        links.new(tex.outputs["Color"], mean.inputs[0])
+        return mean.outputs["Value"]
+
+    def slope(plus, minus):
+        d = nodes.new("ShaderNodeMath")
+        d.operation = "SUBTRACT"
+        links.new(plus, d.inputs[0])
+        links.new(minus, d.inputs[1])
+        m = nodes.new("ShaderNodeMath")
+        m.operation = "MULTIPLY"
+        m.inputs[1].default_value = -0.5 * scale
+        links.new(d.outputs[0], m.inputs[0])
+        return m.outputs[0]
+
+    n = nodes.new("ShaderNodeCombineXYZ")
+    links.new(slope(height_at(1 / w, 0), height_at(-1 / w, 0)), n.inputs["X"])
+    links.new(slope(height_at(0, 1 / h), height_at(0, -1 / h)), n.inputs["Y"])
+    n.inputs["Z"].default_value = 1.0
+    unit = nodes.new("ShaderNodeVectorMath")
+    unit.operation = "NORMALIZE"
+    links.new(n.outputs["Vector"], unit.inputs[0])
+    colour = nodes.new("ShaderNodeVectorMath")  # n / 2 + 1 / 2, as a normal map stores it
+    colour.operation = "MULTIPLY_ADD"
+    colour.inputs[1].default_value = (0.5, 0.5, 0.5)
+    colour.inputs[2].default_value = (0.5, 0.5, 0.5)
+    links.new(unit.outputs["Vector"], colour.inputs[0])
+    nm = nodes.new("ShaderNodeNormalMap")
+    nm.space = "TANGENT"
+    nm.uv_map = "UVMap"
+    nm.inputs["Strength"].default_value = 1.0
+    links.new(colour.outputs["Vector"], nm.inputs["Color"])
+    return nm.outputs["Normal"]
+
+
 def _material(name, mat):
     m = bpy.data.materials.new(name)
     m.use_nodes = True
@@ -81,10 +141,14 @@ def _material(name, mat):
     nodes.clear()
     out = nodes.new("ShaderNodeOutputMaterial")
 
+    normal = _bump_normal(nodes, links, mat["bump"], mat.get("bump_scale", 1.0)) if mat.get("bump") else None
+
     def diffuse():
         d = nodes.new("ShaderNodeBsdfDiffuse")
         d.inputs["Color"].default_value = _rgba(mat["diffuse"])
         d.inputs["Roughness"].default_value = 0.0
+        if normal is not None:
+            links.new(normal, d.inputs["Normal"])
         if mat.get("texture"):
             # Kd x map_Kd, bilinear, wrapping, sRGB-decoded: as our TextureLoader.
             tex = nodes.new("ShaderNodeTexImage")
@@ -125,6 +189,8 @@ def _material(name, mat):
             alpha = (2.0 / (mat.get("phong_exponent", 10.0) + 2.0)) ** 0.5
             g.inputs["Roughness"].default_value = alpha ** 0.5
         g.inputs["Color"].default_value = _rgba(mat["specular"])
+        if normal is not None:
+            links.new(normal, g.inputs["Normal"])
         surface = add(diffuse(), g.outputs[0]) if max(mat["diffuse"]) > 0 else g.outputs[0]
     else:
         surface = diffuse()
@@ -168,6 +234,84 @@ def _add_mesh(name, positions, triangles, normals, material, uvs=None):
     bpy.context.scene.collection.objects.link(obj)
 
 
+# "principled" (default): the Principled BSDFs as imported (Burley diffuse); "lambert"
+# (IGI_CYCLES_DIFFUSE=lambert): each one's diffuse lobe swapped for a Lambertian Diffuse BSDF
+# (_lambert_diffuse), to measure Burley against Lambert alone.
+DIFFUSE = os.environ.get("IGI_CYCLES_DIFFUSE", "principled")
+
+
+def _source(socket):
+    """The socket linked into `socket`, or None."""
+    return socket.links[0].from_socket if socket.is_linked else None
+
+
+def _alpha_cut_off(material, principled):
+    """glTF alphaMode MASK: Blender 3.4's importer makes it blend_method CLIP with
+    alpha_threshold = alphaCutoff, which only EEVEE reads (Cycles blends by the alpha). So the
+    alpha going into the Principled BSDF becomes 1 where alpha >= cutoff and 0 elsewhere (ours:
+    docs/MATERIALS.md, "Alpha"): 1 - (alpha < cutoff)."""
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    cutoff = material.alpha_threshold
+    socket = principled.inputs["Alpha"]
+    src = _source(socket)
+    if src is None:
+        socket.default_value = 1.0 if socket.default_value >= cutoff else 0.0
+    else:
+        below = nodes.new("ShaderNodeMath")
+        below.operation = "LESS_THAN"
+        below.inputs[1].default_value = cutoff
+        links.new(src, below.inputs[0])
+        keep = nodes.new("ShaderNodeMath")
+        keep.operation = "SUBTRACT"
+        keep.inputs[0].default_value = 1.0
+        links.new(below.outputs[0], keep.inputs[1])
+        links.new(keep.outputs[0], socket)
+    material.blend_method = "BLEND"  # what Cycles does anyway; the cut is in the nodes now
+    print(f"cycles: {material.name}: alpha MASK at {cutoff:g} applied in the shader", flush=True)
+
+
+def _lambert_diffuse(material, principled):
+    """Principled (v1, Blender 3.x) = Burley diffuse x base colour x (1 - metallic)(1 -
+    transmission) + the specular lobes, the diffuse not weighted by the specular's Fresnel.
+    Swapped: the Principled with a black base colour (its specular lobes only: specular tint 0,
+    as the importer leaves it) plus a Diffuse BSDF of roughness 0 (Lambert) with that base colour
+    times the same weight and the same normal. Only for opaque dielectrics (metallic 0) with
+    constant transmission (the Burley scene's); others are left as they are, with a message."""
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    ins = principled.inputs
+    if ins["Metallic"].is_linked or ins["Transmission"].is_linked or ins["Alpha"].is_linked \
+            or ins["Alpha"].default_value < 1 or ins["Subsurface"].default_value > 0 \
+            or ins["Metallic"].default_value > 0:
+        # A metallic > 0 takes its specular colour from the base colour, which the swap blackens;
+        # metallic 1 has no diffuse lobe to swap.
+        print(f"cycles: {material.name}: diffuse left as Burley (not a constant opaque dielectric)", flush=True)
+        return
+    weight = (1 - ins["Metallic"].default_value) * (1 - ins["Transmission"].default_value)
+    d = nodes.new("ShaderNodeBsdfDiffuse")
+    d.inputs["Roughness"].default_value = 0.0
+    colour = nodes.new("ShaderNodeMixRGB")
+    colour.blend_type = "MULTIPLY"
+    colour.inputs["Fac"].default_value = 1.0
+    colour.inputs["Color2"].default_value = (weight, weight, weight, 1.0)
+    base = _source(ins["Base Color"])
+    if base is None:
+        colour.inputs["Color1"].default_value = ins["Base Color"].default_value
+    else:
+        links.new(base, colour.inputs["Color1"])
+        links.remove(ins["Base Color"].links[0])
+    links.new(colour.outputs["Color"], d.inputs["Color"])
+    ins["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    if ins["Normal"].is_linked:
+        links.new(_source(ins["Normal"]), d.inputs["Normal"])
+    add = nodes.new("ShaderNodeAddShader")
+    targets = [l.to_socket for l in principled.outputs["BSDF"].links]
+    links.new(principled.outputs["BSDF"], add.inputs[0])
+    links.new(d.outputs["BSDF"], add.inputs[1])
+    for t in targets:
+        links.new(add.outputs["Shader"], t)
+    print(f"cycles: {material.name}: diffuse swapped for Lambert (weight {weight:g})", flush=True)
+
+
 def _import_gltf(model):
     """A glTF mesh of the scene file through Blender's own importer (its lights in the
     importer's "Standard" lighting mode, its default, asked for by name: `convert_lighting_mode`
@@ -186,6 +330,7 @@ def _import_gltf(model):
     if not hasattr(numpy, "bool"):
         numpy.bool = bool  # Blender 3.4's importer uses numpy.bool, gone from numpy >= 1.24
     before = set(bpy.data.objects)
+    images_before = set(bpy.data.images)
     options = {}
     props = bpy.ops.import_scene.gltf.get_rna_type().properties
     for name in ("convert_lighting_mode", "export_import_convert_lighting_mode"):
@@ -193,6 +338,13 @@ def _import_gltf(model):
             options[name] = "SPEC"
     bpy.ops.import_scene.gltf(filepath=model["file"], **options)
     new = [o for o in bpy.data.objects if o not in before]
+    for image in bpy.data.images:
+        if image not in images_before:
+            # glTF colours are not premultiplied by alpha, and OPAQUE ignores alpha altogether;
+            # a Cycles image texture whose Alpha output is unused returns its colour premultiplied
+            # (black where alpha is 0) unless the image's alpha is "channel packed".
+            image.alpha_mode = "CHANNEL_PACKED"
+    seen = set()
     root = bpy.data.objects.new(model["name"] + "_root", None)
     bpy.context.scene.collection.objects.link(root)
     root.matrix_world = mathutils.Matrix(model["matrix"]) @ mathutils.Matrix.Rotation(-math.pi / 2, 4, "X")
@@ -208,10 +360,15 @@ def _import_gltf(model):
             else:
                 o.data.shadow_soft_size = 0.0
         for slot in getattr(o, "material_slots", []):
-            if slot.material and slot.material.use_nodes:
-                for node in slot.material.node_tree.nodes:
+            if slot.material and slot.material.use_nodes and slot.material not in seen:
+                seen.add(slot.material)
+                for node in list(slot.material.node_tree.nodes):
                     if node.type == "BSDF_PRINCIPLED":
                         node.distribution = "GGX"
+                        if slot.material.blend_method == "CLIP":
+                            _alpha_cut_off(slot.material, node)
+                        if DIFFUSE == "lambert":
+                            _lambert_diffuse(slot.material, node)
     print(f"cycles: imported {model['file']}: {len(new)} objects", flush=True)
 
 

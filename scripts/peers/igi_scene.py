@@ -11,7 +11,8 @@ Standard library only: it runs under /usr/bin/python3 and under Blender's Python
 Output of `flatten(path)` (also written as JSON by `python3 igi_scene.py scene out.json`):
   camera:    {position, look_at, up, fov_y}     (fov_y: vertical, degrees)
   materials: {name: {type: diffuse|glossy|mirror|glass, diffuse, specular, ior, emission,
-               texture (absolute path of map_Kd, or absent)}}
+               texture (absolute path of map_Kd, or absent),
+               bump (absolute path of bump / map_bump: a height map, or absent), bump_scale (its -bm, 1)}}
   meshes:    [{name, material, positions: [[x,y,z]], normals: [[x,y,z]] or None,
                uvs: [[u,v]] or None, triangles: [[i,j,k]]}]   (one entry per material and source mesh)
   gltf:      [{file (absolute path), name, matrix (4x4 row-major: our T*Rz*Ry*Rx*S)}]: glTF meshes,
@@ -104,6 +105,11 @@ def read_mtl(path):
         elif current is not None and key == "map_Kd" and args:
             # The last word is the file (options such as -s come before it).
             current["map_Kd"] = _find_file(os.path.dirname(path), args[-1])
+        elif current is not None and key in ("bump", "map_bump") and args:
+            # A height map (client/materials/BumpMap.h); the last word is the file, -bm its scale.
+            current["bump"] = _find_file(os.path.dirname(path), args[-1])
+            if "-bm" in args[:-1]:
+                current["bump_scale"] = float(args[args.index("-bm") + 1])
         elif current is not None and key in ("Kd", "Ks", "Ke"):
             current[key] = _vec([float(a) for a in args[:3]] if len(args) >= 3 else float(args[0]))
         elif current is not None and key in ("Ns", "Ni"):
@@ -126,6 +132,8 @@ def _material_from_mtl(m):
         mat.update(type="mirror" if m.get("Ns", 0.0) >= 1000 else "glossy", specular=ks)
     if "map_Kd" in m:
         mat["texture"] = m["map_Kd"]
+    if "bump" in m:
+        mat["bump"], mat["bump_scale"] = m["bump"], m.get("bump_scale", 1.0)
     total = max(a + b for a, b in zip(mat["diffuse"], mat["specular"]))
     if total > 1.0:
         mat["diffuse"] = [a / total for a in mat["diffuse"]]
