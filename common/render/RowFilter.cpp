@@ -53,22 +53,27 @@ void filterPixel(const Setup& u, int x, ShadedRow& out) {
     const glm::vec3 n = at(c, R::kNx, i);
     const float tolerance = u.s.depthThreshold * d;
     glm::vec3 sum(0.0f), glossySum(0.0f);
-    int count = 0;
+    int count = 0, glossyCount = 0;
     for (int r = 0; r < u.window.count; ++r) {
         const FrameRow& row = *u.window.rows[r];
         for (int qx = x0; qx < x1; ++qx) {
             const int q = u.order.position(qx);
             if (std::fabs(row[R::kDepth][q] - d) > tolerance) continue;  // also rejects +inf
             const glm::vec3 m = at(row, R::kNx, q);
-            if (m.x * n.x + m.y * n.y + m.z * n.z < u.s.normalThreshold) continue;
+            const float dot = m.x * n.x + m.y * n.y + m.z * n.z;
+            if (dot < u.s.normalThreshold) continue;
             sum += at(row, R::kEr, q);
-            if (u.glossy) glossySum += at(row, R::kGr, q);
             ++count;
+            // The glossy radiance only from neighbours of nearly the same normal.
+            if (u.glossy && !(dot < u.s.glossyNormalThreshold)) {
+                glossySum += at(row, R::kGr, q);
+                ++glossyCount;
+            }
         }
     }
     // The pixel itself passes unless it has no normal; then it stands alone.
     const glm::vec3 irradiance = count > 0 ? sum / float(count) : ownE;
-    const glm::vec3 glossy = count > 0 ? glossySum / float(count) : ownG;
+    const glm::vec3 glossy = glossyCount > 0 ? glossySum / float(glossyCount) : ownG;
     put(out, S::kFr, i, reflectance * irradiance + glossy + unfiltered);
 }
 
@@ -85,8 +90,10 @@ IGI_LANES void filterLanes(const Setup& u, const int* offsets, int i, ShadedRow&
     const V nx = load<V>(c[R::kNx] + i), ny = load<V>(c[R::kNy] + i), nz = load<V>(c[R::kNz] + i);
     const V tolerance = splat<V>(u.s.depthThreshold) * d;
     const V threshold = splat<V>(u.s.normalThreshold);
+    const V glossyThreshold = splat<V>(u.s.glossyNormalThreshold);
     V sr = zero, sg = zero, sb = zero, gr = zero, gg = zero, gb = zero;
     M passed = splatInt<V>(0);  // neighbours that passed, counted in integers (minus the mask)
+    M glossyPassed = splatInt<V>(0);  // of which also the glossy test
     for (int r = 0; r < u.window.count; ++r) {
         const FrameRow& row = *u.window.rows[r];
         const float* depth = row[R::kDepth] + i;
@@ -101,9 +108,11 @@ IGI_LANES void filterLanes(const Setup& u, const int* offsets, int i, ShadedRow&
             sg += select(pass, load<V>(eg + q), zero);
             sb += select(pass, load<V>(eb + q), zero);
             if constexpr (Glossy) {
-                gr += select(pass, load<V>(qr + q), zero);
-                gg += select(pass, load<V>(qg + q), zero);
-                gb += select(pass, load<V>(qb + q), zero);
+                const M glossyPass = pass & ~(dot < glossyThreshold);
+                gr += select(glossyPass, load<V>(qr + q), zero);
+                gg += select(glossyPass, load<V>(qg + q), zero);
+                gb += select(glossyPass, load<V>(qb + q), zero);
+                glossyPassed -= glossyPass;
             }
             passed -= pass;
         }
@@ -115,9 +124,11 @@ IGI_LANES void filterLanes(const Setup& u, const int* offsets, int i, ShadedRow&
     V hr = zero, hg = zero, hb = zero, og = zero, oh = zero, ob = zero;  // glossy: filtered, own
     const M any = passed > splatInt<V>(0), finiteDepth = finite(d);
     if constexpr (Glossy) {
+        const V glossyCount = __builtin_convertvector(glossyPassed, V);
+        const M anyGlossy = glossyPassed > splatInt<V>(0);
         og = load<V>(c[R::kGr] + i), oh = load<V>(c[R::kGg] + i), ob = load<V>(c[R::kGb] + i);
-        hr = select(any, gr / count, og), hg = select(any, gg / count, oh);
-        hb = select(any, gb / count, ob);
+        hr = select(anyGlossy, gr / glossyCount, og), hg = select(anyGlossy, gg / glossyCount, oh);
+        hb = select(anyGlossy, gb / glossyCount, ob);
     }
     const V fr = select(any, sr / count, er), fg = select(any, sg / count, eg),
             fb = select(any, sb / count, eb);

@@ -28,18 +28,21 @@ inline std::vector<glm::vec3> referenceFilter(const FrameBuffer& f, Discontinuit
             }
             const int x0 = filterWindowStart(x, s.sizeX, f.width);
             glm::vec3 sum(0.0f), glossy(0.0f);
-            int count = 0;
+            int count = 0, glossyCount = 0;
             for (int qy = y0; qy < std::min(f.height, y0 + s.sizeY); ++qy)
                 for (int qx = x0; qx < std::min(f.width, x0 + s.sizeX); ++qx) {
                     const std::size_t q = std::size_t(qy) * f.width + qx;
                     if (std::fabs(f.depth[q] - d) > s.depthThreshold * d) continue;
-                    if (glm::dot(f.normal[q], f.normal[p]) < s.normalThreshold) continue;
+                    const float dot = glm::dot(f.normal[q], f.normal[p]);
+                    if (dot < s.normalThreshold) continue;
                     sum += f.irradiance[q];
-                    glossy += f.glossy[q];
                     ++count;
+                    if (dot < s.glossyNormalThreshold) continue;  // glossy: nearly the same normal
+                    glossy += f.glossy[q];
+                    ++glossyCount;
                 }
             const glm::vec3 e = count > 0 ? sum / float(count) : f.irradiance[p];
-            const glm::vec3 g = count > 0 ? glossy / float(count) : f.glossy[p];
+            const glm::vec3 g = glossyCount > 0 ? glossy / float(glossyCount) : f.glossy[p];
             out[p] = f.reflectance[p] * e + g + f.unfiltered[p];
         }
     }
