@@ -376,6 +376,18 @@ void checkGltfFeatures(const std::string& path, const tinygltf::Model& model) {
     if (!partialTransmission.empty())
         ignored.insert("partial KHR_materials_transmission, all or nothing instead (" +
                        listed(partialTransmission) + ")");
+    // Lookups are bilinear, without mip-maps (a path tracer's pixels average many lookups):
+    // a sampler that asks for nearest texels (pixel art, data maps) looks different.
+    std::vector<std::string> nearest;
+    for (std::size_t i = 0; i < model.samplers.size(); ++i) {
+        const tinygltf::Sampler& s = model.samplers[i];
+        if (s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ||
+            s.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ||
+            s.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST)
+            nearest.push_back("sampler " + std::to_string(i));
+    }
+    if (!nearest.empty())
+        ignored.insert("NEAREST texture filters, bilinear instead (" + listed(nearest) + ")");
     if (!ignored.empty())
         spdlog::warn("{}: material features not modelled, rendered without them: {}", path,
                      joined(ignored));
@@ -522,19 +534,50 @@ class GltfMaterials {
     }
 
     int colourTexture(int textureIndex, const std::string& what = "baseColorTexture") {
-        const int image = imageOf(textureIndex, what);
-        const auto [name, key] = imageNameAndKey(image);
-        const auto& bytes = model_.images[image].image;
-        return assets_.textureBytes(key, name, std::string(bytes.begin(), bytes.end()));
+        return texture(textureIndex, what, TextureEncoding::Colour);
     }
 
     // A texture of values rather than colours: decoded without the sRGB curve.
     int dataTexture(int textureIndex, const std::string& what) {
+        return texture(textureIndex, what, TextureEncoding::Data);
+    }
+
+    int texture(int textureIndex, const std::string& what, TextureEncoding encoding) {
         const int image = imageOf(textureIndex, what);
         const auto [name, key] = imageNameAndKey(image);
         const auto& bytes = model_.images[image].image;
-        return assets_.textureBytes(key, name, std::string(bytes.begin(), bytes.end()),
-                                    TextureEncoding::Data);
+        const auto [wrapU, wrapV] = wrapOf(textureIndex);
+        return assets_.textureBytes(key, name, std::string(bytes.begin(), bytes.end()), encoding,
+                                    wrapU, wrapV);
+    }
+
+    // The texture's sampler's wrapS and wrapT (REPEAT without a sampler, as the specification
+    // says).
+    std::pair<TextureWrap, TextureWrap> wrapOf(int textureIndex) const {
+        const int sampler = model_.textures[textureIndex].sampler;
+        if (sampler < 0) return {TextureWrap::Repeat, TextureWrap::Repeat};
+        if (sampler >= static_cast<int>(model_.samplers.size()))
+            throw SceneError::atPath(path_, "/textures/" + std::to_string(textureIndex),
+                                     "sampler " + std::to_string(sampler) + " does not exist");
+        const tinygltf::Sampler& s = model_.samplers[sampler];
+        const std::string at = "/samplers/" + std::to_string(sampler);
+        return {wrapMode(s.wrapS, at + "/wrapS"), wrapMode(s.wrapT, at + "/wrapT")};
+    }
+
+    TextureWrap wrapMode(int value, const std::string& at) const {
+        switch (value) {
+            case TINYGLTF_TEXTURE_WRAP_REPEAT:
+                return TextureWrap::Repeat;
+            case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+                return TextureWrap::ClampToEdge;
+            case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+                return TextureWrap::MirroredRepeat;
+            default:
+                throw SceneError::atPath(path_, at,
+                                         std::to_string(value) +
+                                             " is not a wrap mode (10497 REPEAT, 33071 "
+                                             "CLAMP_TO_EDGE, 33648 MIRRORED_REPEAT)");
+        }
     }
 
     const std::string& path_;

@@ -45,11 +45,17 @@ std::optional<int> SceneAssets::textureFile(const std::string& path, TextureEnco
 }
 
 int SceneAssets::textureBytes(const std::string& key, const std::string& name,
-                              const std::string& bytes, TextureEncoding encoding) {
-    const std::string k = keyOf(key, encoding);
+                              const std::string& bytes, TextureEncoding encoding, TextureWrap wrapU,
+                              TextureWrap wrapV) {
+    std::string k = keyOf(key, encoding);
+    if (wrapU != TextureWrap::Repeat || wrapV != TextureWrap::Repeat)
+        k += "#wrap" + std::to_string(int(wrapU)) + std::to_string(int(wrapV));
     auto cached = byKey_.find(k);
     if (cached != byKey_.end()) return cached->second;
-    return add(k, name, bytes, encoding);
+    const int index = add(k, name, bytes, encoding);
+    scene_.textures[std::size_t(index)].wrapU = wrapU;
+    scene_.textures[std::size_t(index)].wrapV = wrapV;
+    return index;
 }
 
 void SceneAssets::checkMaterialCount(std::size_t count, const std::string& file) const {

@@ -31,9 +31,12 @@ class SceneAssets {
                                    TextureEncoding encoding = TextureEncoding::Colour);
 
     /// Index of a texture decoded from bytes already in memory (glTF images), cached under
-    /// `key`; `name` picks the decoder by its extension.
+    /// `key`; `name` picks the decoder by its extension. `wrapU`, `wrapV`: how lookups continue
+    /// past its edges (a glTF sampler's); an image used with two samplers is two textures.
     int textureBytes(const std::string& key, const std::string& name, const std::string& bytes,
-                     TextureEncoding encoding = TextureEncoding::Colour);
+                     TextureEncoding encoding = TextureEncoding::Colour,
+                     TextureWrap wrapU = TextureWrap::Repeat,
+                     TextureWrap wrapV = TextureWrap::Repeat);
 
     /// The scene's triangles and vertices so far: a loader checks fits() and add()s before it
     /// allocates for a file or a primitive.

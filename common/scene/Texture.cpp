@@ -1,5 +1,6 @@
 #include "scene/Texture.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace igi {
@@ -11,10 +12,40 @@ int wrap(int i, int n) {
     return r < 0 ? r + n : r;
 }
 
-// Bilinear lookup with wrapping in a row-major width x height image (row 0 at v = 1);
-// `fallback` for coordinates that are not finite.
+// A texel coordinate (the floor of a lookup's) brought near the image before it becomes an int,
+// so that huge coordinates cannot overflow, keeping what `mode` makes of it.
+float reduce(float f, int n, TextureWrap mode) {
+    switch (mode) {
+        case TextureWrap::ClampToEdge:
+            return std::clamp(f, -1.0f, static_cast<float>(n));
+        case TextureWrap::MirroredRepeat:
+            return std::fmod(f, 2.0f * static_cast<float>(n));  // the period of a mirror
+        case TextureWrap::Repeat:
+            break;
+    }
+    return std::fmod(f, static_cast<float>(n));
+}
+
+// Texel index i (reduced) in [0, n), as `mode` continues the image past its edges.
+int texelIndex(int i, int n, TextureWrap mode) {
+    switch (mode) {
+        case TextureWrap::ClampToEdge:
+            return std::clamp(i, 0, n - 1);
+        case TextureWrap::MirroredRepeat: {
+            const int r = wrap(i, 2 * n);
+            return r < n ? r : 2 * n - 1 - r;
+        }
+        case TextureWrap::Repeat:
+            break;
+    }
+    return wrap(i, n);
+}
+
+// Bilinear lookup in a row-major width x height image (row 0 at v = 1), continued past its
+// edges by wrapU and wrapV; `fallback` for coordinates that are not finite.
 template <typename T>
-T bilinear(const std::vector<T>& values, int width, int height, glm::vec2 uv, T fallback) {
+T bilinear(const std::vector<T>& values, int width, int height, glm::vec2 uv, TextureWrap wrapU,
+           TextureWrap wrapV, T fallback) {
     // Texel centres sit at half-integer coordinates; rows are stored top first while v grows
     // upwards, hence the flip.
     const float x = uv.x * static_cast<float>(width) - 0.5f;
@@ -24,11 +55,10 @@ T bilinear(const std::vector<T>& values, int width, int height, glm::vec2 uv, T 
     if (!std::isfinite(fx0) || !std::isfinite(fy0)) return fallback;
     const float tx = x - fx0;
     const float ty = y - fy0;
-    // Reduce before converting to int so that huge coordinates cannot overflow.
-    const int x0 = static_cast<int>(std::fmod(fx0, static_cast<float>(width)));
-    const int y0 = static_cast<int>(std::fmod(fy0, static_cast<float>(height)));
-    const int xa = wrap(x0, width), xb = wrap(x0 + 1, width);
-    const int ya = wrap(y0, height), yb = wrap(y0 + 1, height);
+    const int x0 = static_cast<int>(reduce(fx0, width, wrapU));
+    const int y0 = static_cast<int>(reduce(fy0, height, wrapV));
+    const int xa = texelIndex(x0, width, wrapU), xb = texelIndex(x0 + 1, width, wrapU);
+    const int ya = texelIndex(y0, height, wrapV), yb = texelIndex(y0 + 1, height, wrapV);
     auto at = [&](int px, int py) { return values[static_cast<size_t>(py) * width + px]; };
     const T top = at(xa, ya) * (1.0f - tx) + at(xb, ya) * tx;
     const T bottom = at(xa, yb) * (1.0f - tx) + at(xb, yb) * tx;
@@ -39,13 +69,13 @@ T bilinear(const std::vector<T>& values, int width, int height, glm::vec2 uv, T 
 
 glm::vec3 Texture::sample(glm::vec2 uv) const {
     if (width <= 0 || height <= 0 || texels.empty()) return glm::vec3(1.0f);
-    return bilinear(texels, width, height, uv, average);
+    return bilinear(texels, width, height, uv, wrapU, wrapV, average);
 }
 
 float Texture::sampleAlpha(glm::vec2 uv) const {
     if (width <= 0 || height <= 0 || alpha.size() != static_cast<size_t>(width) * height)
         return 1.0f;
-    return bilinear(alpha, width, height, uv, alphaMinimum);
+    return bilinear(alpha, width, height, uv, wrapU, wrapV, alphaMinimum);
 }
 
 }  // namespace igi

@@ -8,6 +8,10 @@
 
 namespace igi {
 
+/// How a lookup outside [0, 1] continues the image, per axis: a glTF sampler's wrapS / wrapT
+/// (REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT). OBJ / MTL textures repeat.
+enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
+
 /// A decoded colour texture in linear RGB.
 struct Texture {
     std::string path;  ///< as the referencing file named it, for messages
@@ -23,9 +27,12 @@ struct Texture {
     /// Coverage in [0, 1], row-major as texels: the image's alpha channel (never sRGB-decoded),
     /// or for TextureEncoding::Coverage without one its grey; empty when every value is 1.
     std::vector<float> alpha;
-    float alphaMinimum = 1.0f;  ///< the least value of `alpha` (1 when it is empty)
+    float alphaMinimum = 1.0f;                ///< the least value of `alpha` (1 when it is empty)
+    TextureWrap wrapU = TextureWrap::Repeat;  ///< along u (glTF's S)
+    TextureWrap wrapV = TextureWrap::Repeat;  ///< along v (glTF's T)
 
-    /// Bilinear lookup with wrapping; (u, v) as in OBJ, v = 0 at the bottom.
+    /// Bilinear lookup, continued outside [0, 1] by wrapU and wrapV; (u, v) as in OBJ, v = 0 at
+    /// the bottom.
     glm::vec3 sample(glm::vec2 uv) const;
     /// The same for `alpha`: 1 when the texture has none.
     float sampleAlpha(glm::vec2 uv) const;

@@ -87,3 +87,61 @@ TEST(TextureTransform, EverySlotIsReadInIgisUvs) {
 
 }  // namespace
 }  // namespace igi
+
+namespace igi {
+namespace {
+
+// A texture's sampler sets how its lookups continue past the edges (REPEAT without one); a
+// value that is no wrap mode is an error naming the sampler's field; NEAREST filters are named
+// in the warning (lookups are bilinear).
+TEST(GltfSamplers, WrapModesAreReadAndNearestFiltersWarned) {
+    test::CapturedLog log;
+    const Scene scene = plainGltfWith([](nlohmann::json& g) {
+        g["materials"] = nlohmann::json::array(
+            {{{"name", "clamped"},
+              {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}},
+             {{"name", "mirrored"},
+              {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 1}}}}}},
+             {{"name", "plain"},
+              {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 2}}}}}}});
+        g["samplers"] =
+            nlohmann::json::array({{{"wrapS", 33071}, {"wrapT", 33071}, {"magFilter", 9728}},
+                                   {{"wrapS", 33648}, {"wrapT", 10497}}});
+        g["textures"] = nlohmann::json::array(
+            {{{"source", 0}, {"sampler", 0}}, {{"source", 0}, {"sampler", 1}}, {{"source", 0}}});
+        g["images"] = nlohmann::json::array({{{"uri", "t.pgm"}}});
+    });
+    auto textureOf = [&](const std::string& name) -> const Texture& {
+        for (const Material& m : scene.materials)
+            if (m.name == name) return scene.textures.at(std::size_t(m.diffuseTexture));
+        throw std::runtime_error("no material " + name);
+    };
+    EXPECT_EQ(textureOf("clamped").wrapU, TextureWrap::ClampToEdge);
+    EXPECT_EQ(textureOf("clamped").wrapV, TextureWrap::ClampToEdge);
+    EXPECT_EQ(textureOf("mirrored").wrapU, TextureWrap::MirroredRepeat);
+    EXPECT_EQ(textureOf("mirrored").wrapV, TextureWrap::Repeat);
+    EXPECT_EQ(textureOf("plain").wrapU, TextureWrap::Repeat);
+    EXPECT_EQ(textureOf("plain").wrapV, TextureWrap::Repeat);
+    EXPECT_EQ(scene.textures.size(), 3u) << "one image, three samplers: three textures";
+    EXPECT_NE(log.text().find("NEAREST texture filters, bilinear instead (sampler 0)"),
+              std::string::npos)
+        << log.text();
+
+    try {
+        plainGltfWith([](nlohmann::json& g) {
+            g["materials"] = nlohmann::json::array(
+                {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+            g["samplers"] = nlohmann::json::array({{{"wrapS", 1234}}});
+            g["textures"] = nlohmann::json::array({{{"source", 0}, {"sampler", 0}}});
+            g["images"] = nlohmann::json::array({{{"uri", "t.pgm"}}});
+        });
+        FAIL() << "a wrap mode of 1234 was accepted";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("/samplers/0/wrapS"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("1234 is not a wrap mode"), std::string::npos)
+            << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace igi

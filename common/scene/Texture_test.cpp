@@ -58,6 +58,30 @@ TEST(TextureSample, Wraps) {
     expectNear(t.sample({-0.75f, 2.75f}), kA);
 }
 
+// glTF samplers' CLAMP_TO_EDGE: past an edge, the edge texels; MIRRORED_REPEAT: the image
+// mirrored at each edge, so that u = 1.25 looks up u = 0.75. Each axis has its own.
+TEST(TextureSample, ClampsAndMirrorsAsTheSamplerSays) {
+    Texture clamp = twoByTwo();
+    clamp.wrapU = clamp.wrapV = TextureWrap::ClampToEdge;
+    expectNear(clamp.sample({0.0f, 0.75f}), kA);  // not half of the other edge's B
+    expectNear(clamp.sample({-3.0f, 0.75f}), kA);
+    expectNear(clamp.sample({7.5f, 9.0f}), kB);                 // far past the top right
+    expectNear(clamp.sample({0.25f, -1e6f}), kC);               // far below: the bottom row
+    expectNear(clamp.sample({0.5f, 0.75f}), (kA + kB) * 0.5f);  // inside, as before
+    Texture mirror = twoByTwo();
+    mirror.wrapU = mirror.wrapV = TextureWrap::MirroredRepeat;
+    expectNear(mirror.sample({1.25f, 0.75f}), kB);  // u 0.75 mirrored: B
+    expectNear(mirror.sample({1.75f, 0.75f}), kA);
+    expectNear(mirror.sample({-0.25f, 0.75f}), kA);  // mirrored at u = 0
+    expectNear(mirror.sample({1.0f, 0.75f}), kB);    // the edge: B and its mirror image
+    expectNear(mirror.sample({0.25f, 1.25f}), kA);   // v 0.75
+    expectNear(mirror.sample({2.25f, 0.75f}), kA);   // one whole period further
+    Texture mixed = twoByTwo();
+    mixed.wrapU = TextureWrap::ClampToEdge;  // v still repeats
+    expectNear(mixed.sample({1.5f, 1.25f}), kD);
+    expectNear(mixed.sample({0.0f, 0.75f}), kA);
+}
+
 TEST(DecodeTexture, PpmIsReadTopRowFirstAndLinearized) {
     DiskFileSource disk(test::testdataDir() / "minimal");
     const Texture t = decodeTexture("checker.ppm", disk.read("checker.ppm"));
