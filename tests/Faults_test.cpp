@@ -145,14 +145,8 @@ TEST(Faults, AJoinerFinishesTheOlderFramesOfAClientThatDied) {
     // tiles it holds from then on; nothing finishes after that.
     std::this_thread::sleep_for(std::chrono::seconds(2));
     const int stalledAfter = session.lastFrame();
-    const pid_t joiner =
-        spawnProcess(clientCommand({"--connect", "127.0.0.1:" + session.port, "--threads", "1",
-                                    "--secret-file", secret.string()}),
-                     dir / "joiner.log");
-    ASSERT_GT(joiner, 0);
-    ASSERT_FALSE(
-        waitForLine(session.log, std::regex(R"(client 2 \(.*\) is ready)"), session.master).empty())
-        << readFile(session.log) << readFile(dir / "joiner.log");
+    const pid_t joiner = session.join(secret, 2);
+    ASSERT_GT(joiner, 0) << readFile(session.log) << readFile(dir / "joiner.log");
     ASSERT_EQ(kill(victim, SIGKILL), 0);
     ASSERT_TRUE(session.waitFrames(3)) << "the frames the dead client held were never finished:\n"
                                        << readFile(session.log) << readFile(dir / "joiner.log");

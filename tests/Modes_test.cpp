@@ -136,14 +136,8 @@ void expectAJoinerHoldsTheSameLighting(const std::string& mode) {
     // Frames finished before the joiner exists cannot hold its tiles; the frame in flight may,
     // however far ahead the master assigns tiles.
     const int finishedBeforeJoin = session.lastFrame();
-    const pid_t joiner =
-        spawnProcess(clientCommand({"--connect", "127.0.0.1:" + session.port, "--threads", "1",
-                                    "--secret-file", secret.string()}),
-                     dir / "joiner.log");
-    ASSERT_GT(joiner, 0);
-    ASSERT_FALSE(
-        waitForLine(session.log, std::regex(R"(client 2 \(.*\) is ready)"), session.master).empty())
-        << readFile(session.log) << readFile(dir / "joiner.log");
+    const pid_t joiner = session.join(secret, 2);
+    ASSERT_GT(joiner, 0) << readFile(session.log) << readFile(dir / "joiner.log");
     ASSERT_TRUE(session.waitFrames(10)) << readFile(session.log);
     const int frames = session.stop();
     ASSERT_GT(frames, 0) << readFile(session.log);

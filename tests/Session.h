@@ -199,6 +199,19 @@ struct OpenSession {
                     .empty();
     }
 
+    /// Starts a client process that joins the session (with the shared secret in `secret`),
+    /// its output going to dir/joiner.log, and waits until the master says client `id` is
+    /// ready. Its pid, or -1 if it did not start or never became ready.
+    pid_t join(const std::filesystem::path& secret, int id) const {
+        const pid_t joiner =
+            spawnProcess(clientCommand({"--connect", "127.0.0.1:" + port, "--threads", "1",
+                                        "--secret-file", secret.string()}),
+                         dir / "joiner.log");
+        if (joiner <= 0) return -1;
+        const std::regex ready("client " + std::to_string(id) + R"( \(.*\) is ready)");
+        return waitForLine(log, ready, master).empty() ? -1 : joiner;
+    }
+
     /// Stops the session; returns how many frames it finished (-1 on failure).
     int stop() {
         const ProcessResult r = runCtl(dir / "ctl.log", controlPort, {"stop"});
