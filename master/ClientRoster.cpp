@@ -2,6 +2,7 @@
 #include "BuildId.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <spdlog/spdlog.h>
 #include <boost/asio/ip/address.hpp>
@@ -145,6 +146,20 @@ void ClientRoster::onMessage(ClientId id, const proto::Header&, const proto::Mes
         refuse(c,
                "unexpected " + proto::messageTypeName(proto::typeOf(message)) + " from a client");
     }
+}
+
+void ConnectedClient::noteResult(std::chrono::steady_clock::time_point now) {
+    const double age = std::chrono::duration<double>(now - lastResult).count();
+    lastResult = now;
+    tilesPerSecond = tilesPerSecond > 0 ? 0.8 * tilesPerSecond + 0.2 / std::max(age, 1e-4)
+                                        : 1.0 / std::max(age, 1e-4);
+}
+
+int ConnectedClient::queueDepth() const {
+    // Enough tiles to cover ~20 ms of the client's work (latency hiding), and at least two per
+    // eight threads so every core has chunks to take.
+    const int byRate = int(std::ceil(tilesPerSecond * 0.02));
+    return std::clamp(std::max(byRate + 1, 2 + int(threads) / 8), 2, 64);
 }
 
 void ClientRoster::refuse(ConnectedClient& c, const std::string& reason) {

@@ -37,6 +37,11 @@ struct ConnectedClient {
     std::uint32_t threads = 1;
     double tilesPerSecond = 0;  ///< measured, drives how many tiles it holds
     std::chrono::steady_clock::time_point lastResult;
+
+    /// A result came in at `now`: tilesPerSecond follows the rate at which they come.
+    void noteResult(std::chrono::steady_clock::time_point now);
+    /// How many tiles it is to hold at once (queueDepth).
+    int queueDepth() const;
 };
 
 /// The master's clients: it listens, turns away connections beyond --max-clients, proves the

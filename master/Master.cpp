@@ -1,12 +1,12 @@
 #include "Master.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include <spdlog/spdlog.h>
 #include <boost/asio/post.hpp>
 
 #include "Codec.h"
+#include "JoinerScene.h"
 #include "LocalClientLaunch.h"
 #include "SessionScene.h"
 #include "SettingsCommand.h"
@@ -99,27 +99,12 @@ bool Master::framesFollowSettings() {
 }
 
 void Master::onWelcomed(ConnectedClient& c) {
-    // The scene as loaded, plus the changes that bring it to now (through the history a GI mode
-    // with lighting across epochs replays); then every update that follows.
-    SceneTimeline::Join join = timeline_->join();
-    sceneData_.changes = std::move(join.changes);
-    sceneData_.baseFirstFrame = join.baseFirstFrame;
-    sceneData_.history.clear();
-    for (auto& e : join.history) sceneData_.history.push_back({e.firstFrame, std::move(e.changes)});
-    // The GI mode in force, which a settings command may have changed.
-    const GiMode gi = timeline_->state().render.gi;
-    if ((gi == GiMode::Spt || gi == GiMode::PhotonMap) && !timeline_->historyComplete())
-        spdlog::warn(
-            "client {} joins at epoch {}, past the {} epochs of history a joiner replays: its "
-            "photon groups start from epoch {}, so its tiles may be lit differently from the "
-            "other clients' (docs/MODES.md)",
-            c.id, timeline_->epoch(), proto::kMaxHistoryEpochs,
-            timeline_->epoch() - sceneData_.history.size());
+    // The scene as loaded, plus the changes that bring it to now; then every update that
+    // follows.
+    prepareJoinerScene(sceneData_, *timeline_, c.id);
     c.connection->send(sceneData_, 0, timeline_->epoch());
     c.sceneSent = true;
-    // It holds the base epoch and those after it, the newest proto::kClientKeptEpochs.
-    const std::uint32_t oldestHeld = std::max<std::int64_t>(
-        timeline_->baseEpoch(), std::int64_t(timeline_->epoch()) - proto::kClientKeptEpochs + 1);
+    const std::uint32_t oldestHeld = timeline_->oldestEpochAJoinerHolds();
     c.firstFrame = nextFrameToOpen_;
     for (std::uint32_t f = nextFrameToOpen_; f-- > nextFrameToFinish_;)
         if (frames_->at(f).epoch >= oldestHeld) c.firstFrame = f;
@@ -169,13 +154,6 @@ void Master::openFramesAsNeeded() {
     }
 }
 
-int Master::depthFor(const ConnectedClient& s) const {
-    // Enough tiles to cover ~20 ms of the client's work (latency hiding), and at least two per
-    // eight threads so every core has chunks to take.
-    const int byRate = int(std::ceil(s.tilesPerSecond * 0.02));
-    return std::clamp(std::max(byRate + 1, 2 + int(s.threads) / 8), 2, 64);
-}
-
 void Master::dispatch() {
     if (!limits_.started() || ending_) return;
     for (auto& [id, s] : roster_->clients()) {
@@ -183,7 +161,7 @@ void Master::dispatch() {
         // A deep queue is refilled a quarter at a time rather than a tile per result: the
         // assignments then go out together, in one write (net::Connection gathers what is
         // queued), and one system call per tile was the master's largest cost with fast clients.
-        const int depth = depthFor(s);
+        const int depth = s.queueDepth();
         if (scheduler_->inFlight(id) > depth - std::max(1, depth / 4)) continue;
         while (scheduler_->inFlight(id) < depth) {
             openFramesAsNeeded();
@@ -220,59 +198,39 @@ void Master::onTileResult(ConnectedClient& s, const proto::Header& header,
         return roster_->refuse(
             s, "a result for tile " + std::to_string(tileId) + ", which does not exist");
 
-    const auto now = Clock::now();
-    const double age = std::chrono::duration<double>(now - s.lastResult).count();
-    s.lastResult = now;
-    s.tilesPerSecond = s.tilesPerSecond > 0 ? 0.8 * s.tilesPerSecond + 0.2 / std::max(age, 1e-4)
-                                            : 1.0 / std::max(age, 1e-4);
+    s.noteResult(Clock::now());
     const std::uint64_t wireBytes = proto::kHeaderSize + header.payloadSize;
     // The first copy of a tile wins; a later copy is dropped before it costs any decoding.
     if (!scheduler_->complete(s.id, header.frame, tileId)) {
         stats_.addDuplicate(header.frame, s.id, wireBytes);
         return dispatch();
     }
-    OpenFrames::Frame* record = &frames_->at(header.frame);
-    ++record->decoding;
-    const Tile tile = layout[tileId];
-    pool_.submit(
-        [this, id = s.id, header, tileId, tile, record, wireBytes, payload = std::move(payload)] {
-            const auto start = Clock::now();
-            std::string error;
-            proto::TileStats tileStats;
-            try {
-                // Decompressed and copied into the frame still quantized: the compositor
-                // dequantizes the codes as it filters them (CodedFrame.h). A result refused
-                // here has written nothing.
-                const auto result = proto::decodeTileResultCodes(header, payload);
-                record->buffer.scatter(tile, result.codes);  // checks the pixel count first
-                tileStats = result.stats;
-            } catch (const std::exception& e) {
-                error = std::string("bad tile result: ") + e.what();
-            }
-            const double seconds = secondsSince(start);
-            boost::asio::post(io_, [=, this] {
-                onTileDecoded(id, header.frame, tileId, error, tileStats, wireBytes, seconds);
-            });
-        });
+    OpenFrames::Frame& record = frames_->at(header.frame);
+    ++record.decoding;
+    DecodedTile decoded;
+    decoded.client = s.id;
+    decoded.frame = header.frame;
+    decoded.tile = tileId;
+    decoded.wireBytes = wireBytes;
+    decodeTileOnPool(pool_, io_, record, layout[tileId], header, std::move(payload), decoded,
+                     [this](const DecodedTile& d) { onTileDecoded(d); });
     dispatch();
 }
 
-void Master::onTileDecoded(ClientId id, std::uint32_t frame, std::uint32_t tile,
-                           const std::string& error, const proto::TileStats& tileStats,
-                           std::uint64_t wireBytes, double seconds) {
-    OpenFrames::Frame& record = frames_->at(frame);
+void Master::onTileDecoded(const DecodedTile& d) {
+    OpenFrames::Frame& record = frames_->at(d.frame);
     --record.decoding;
-    record.decodeSeconds += seconds;
-    if (!error.empty()) {
+    record.decodeSeconds += d.seconds;
+    if (!d.error.empty()) {
         // The tile goes to someone else; the client that sent garbage goes.
-        scheduler_->reopen(frame, tile);
-        auto it = roster_->clients().find(id);
-        if (it != roster_->clients().end()) roster_->refuse(it->second, error);
+        scheduler_->reopen(d.frame, d.tile);
+        auto it = roster_->clients().find(d.client);
+        if (it != roster_->clients().end()) roster_->refuse(it->second, d.error);
         return dispatch();
     }
-    const Tile& t = scheduler_->layout()[tile];
+    const Tile& t = scheduler_->layout()[d.tile];
     stats_.addTile(
-        frame, id, tileStats, wireBytes,
+        d.frame, d.client, d.stats, d.wireBytes,
         std::uint32_t(t.pixelCount(frameSettings_.interleaveX, frameSettings_.interleaveY)));
     finishReadyFrames();
 }

@@ -26,6 +26,7 @@
 #include "SceneTimeline.h"
 #include "SessionControl.h"
 #include "Statistics.h"
+#include "TileDecoding.h"
 #include "TileScheduler.h"
 #include "scene/Scene.h"
 #include "scene/SceneLoader.h"
@@ -37,9 +38,10 @@ namespace igi {
 /// runs the frames: it opens them, hands their tiles to the clients, takes the results in,
 /// composites each frame when its last tile is in, and ends the session. Its parts:
 /// ClientRoster (connections and the handshake), TileScheduler (who renders which tile),
-/// FrameCompositor (filtering and accumulation), FrameOutputs (images, snapshots, the web view),
-/// SessionControl (control commands and status), SceneTimeline (the scene's epochs), OpenFrames
-/// (the frames in flight) and RenderLimits (when rendering ends).
+/// decodeTileOnPool (a tile result's way into its frame), prepareJoinerScene (what a joiner is
+/// sent), FrameCompositor (filtering and accumulation), FrameOutputs (images, snapshots, the
+/// web view), SessionControl (control commands and status), SceneTimeline (the scene's
+/// epochs), OpenFrames (the frames in flight) and RenderLimits (when rendering ends).
 ///
 /// All session state lives on one io thread (every connection handler runs there), so it
 /// needs no locks; decoding, compositing and encoding run on the thread pool.
@@ -84,9 +86,7 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     /// Ends the rendering for `why` (RenderLimits::end): the session too, unless it is live.
     void endRendering(const std::string& why);
 
-    void onTileDecoded(ClientId id, std::uint32_t frame, std::uint32_t tile,
-                       const std::string& error, const proto::TileStats& tileStats,
-                       std::uint64_t wireBytes, double seconds);
+    void onTileDecoded(const DecodedTile& decoded);
     void onComposited(std::uint32_t frame, double seconds);
     /// Frame `frame` (still in frames_) is in the compositor's image: its stats say so.
     void noteShown(std::uint32_t frame);
@@ -95,7 +95,6 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     void maybeStart();
     void dispatch();
     void openFramesAsNeeded();
-    int depthFor(const ConnectedClient& c) const;
     void finishReadyFrames();
     void endSession(int exitCode);
     void scheduleTick();

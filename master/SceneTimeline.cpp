@@ -95,4 +95,9 @@ SceneTimeline::Join SceneTimeline::join() const {
     return j;
 }
 
+std::uint32_t SceneTimeline::oldestEpochAJoinerHolds() const {
+    return std::uint32_t(
+        std::max<std::int64_t>(baseEpoch_, std::int64_t(epoch_) - proto::kClientKeptEpochs + 1));
+}
+
 }  // namespace igi

@@ -73,6 +73,9 @@ class SceneTimeline {
     bool historyComplete() const { return baseEpoch_ <= restartEpoch_; }
     /// The oldest epoch a joiner gets (the Join's base).
     std::uint32_t baseEpoch() const { return baseEpoch_; }
+    /// The oldest epoch a client that joins now holds: the base and those after it, at most
+    /// the newest proto::kClientKeptEpochs.
+    std::uint32_t oldestEpochAJoinerHolds() const;
 
   private:
     /// Moves the base forward, past the epochs no joiner needs any more (see Join).
