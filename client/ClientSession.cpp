@@ -13,11 +13,15 @@
 #include "render/Tile.h"
 #include "scene/SceneError.h"
 #include "scene/SceneLoader.h"
+#include "util/HeapMemory.h"
 
 namespace igi {
 namespace {
 
 constexpr auto kHeartbeatPeriod = std::chrono::seconds(2);
+// Freed heap goes back to the system every this many heartbeats (20 s): often enough that a
+// burst's high water does not stay resident for long, rarely enough to cost nothing.
+constexpr std::uint64_t kReleaseHeapEvery = 10;
 // Versions kept for tiles still to come.
 constexpr std::size_t kKeptVersions = proto::kClientKeptEpochs;
 
@@ -131,6 +135,13 @@ void ClientSession::scheduleHeartbeat() {
     heartbeat_.async_wait([this](const boost::system::error_code& ec) {
         if (ec || !connection_->isOpen()) return;
         connection_->send(proto::Heartbeat{}, 0, 0);
+        if (++heartbeats_ % kReleaseHeapEvery == 0) {
+            const std::size_t released = releaseFreeHeap();
+            const HeapFigures heap = heapFigures();
+            spdlog::debug(
+                "heap: {:.1f} MB in use, {:.1f} MB held; {:.1f} MB of freed heap released",
+                heap.inUse / 1e6, heap.held / 1e6, released / 1e6);
+        }
         scheduleHeartbeat();
     });
 }

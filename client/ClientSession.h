@@ -85,11 +85,14 @@ class ClientSession {
     void replayTile(const std::shared_ptr<SceneVersion>& version, std::uint32_t frame,
                     std::uint32_t epoch, std::uint32_t tileId, const Tile& tile);
 
+    /// Sends a heartbeat every kHeartbeatPeriod, and gives the heap's free pages back to the
+    /// system every few (releaseFreeHeap).
     void scheduleHeartbeat();
 
     ClientOptions options_;
     boost::asio::io_context io_;
     boost::asio::steady_timer heartbeat_;
+    std::uint64_t heartbeats_ = 0;
     std::shared_ptr<net::Connection> connection_;
     std::optional<net::ClusterKey> key_;
     proto::AuthBytes nonce_{};

@@ -17,6 +17,8 @@
 # Frames are not compared with an undisturbed run here (scripts/fault_injection.sh does that):
 # random numbers follow the frame number, so a still period at frame 100,000 would need an
 # undisturbed run of 100,000 frames.
+# The steady clients' heap in use and held (glibc's figures, which each logs every 20 s) are
+# reported beside their resident memory: a leak grows the first, a high water only the second.
 # It writes OUT/samples.csv, OUT/summary.md (table) and OUT/soak.png (plot), via
 # scripts/soak_report.py (matplotlib, Debian's python3-matplotlib), and exits 1 if a check fails.
 #
@@ -106,16 +108,20 @@ ctl() { "$bin/igi-ctl" --connect "127.0.0.1:$control" "$@" >> "$work/ctl.log" 2>
 roster="$work/roster"
 echo "master $master" > "$roster"
 serial=0
-start_client() {  # name; sets $started
+start_client() {  # name [log level] [log file]; sets $started
   "$bin/igi-client" --connect "127.0.0.1:$port" --threads 1 --secret-file "$work/secret" \
-    --reconnect-seconds 0 --log-level warn >> "$work/clients.log" 2>&1 &
+    --reconnect-seconds 0 --log-level "${2:-warn}" >> "${3:-$work/clients.log}" 2>&1 &
   started=$!
   disown "$started"  # killed on purpose: no "Killed" line from the shell
   pids+=("$started")
   echo "$1 $started" >> "$roster"
 }
 steady=()
-for i in 1 2; do start_client "steady$i"; steady+=("$started"); done
+# The steady clients log at debug: their heap lines ("heap: ... MB in use"), every 20 s, tell a
+# leak (the heap in use grows) from the allocator's high water (only resident memory does).
+for i in 1 2; do
+  start_client "steady$i" debug "$work/steady$i.log"; steady+=("$started")
+done
 churn=()
 for ((i = 2; i < clients; ++i)); do
   serial=$((serial + 1)); start_client "churn$serial"; churn+=("$started")
@@ -124,9 +130,9 @@ done
 # The sampler: every $interval s, one row per live process.
 samples="$out/samples.csv"
 echo "seconds,name,pid,rss_kb,fds,threads,frames_done" > "$samples"
+t0=$(date +%s.%N)  # the samples' and the heap lines' time 0
 (
   set +e  # a failed query (a process gone between two reads) must not end the sampler
-  t0=$(date +%s.%N)
   while :; do
     t=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')
     frames="$("$bin/igi-ctl" --connect "127.0.0.1:$control" status 2>/dev/null |
@@ -246,6 +252,7 @@ report=0
 /usr/bin/python3 "$root/scripts/soak_report.py" --samples "$samples" --out "$out" --warmup "$warmup" \
   --max-slope "$max_slope" --minutes "$minutes" --actions "$faults" --master-exit "$status" \
   --clients-left-running "$clients_alive" --stats-ok "$stats_ok" \
-  --stats-frames "$(cat "$work/stats.frames" 2>/dev/null || echo 0)" || report=$?
+  --stats-frames "$(cat "$work/stats.frames" 2>/dev/null || echo 0)" --t0 "$t0" \
+  --heap-log "steady1=$work/steady1.log" --heap-log "steady2=$work/steady2.log" || report=$?
 if ((report == 0)); then rm -rf "$work"; else echo "work files kept in $work" >&2; trap - EXIT; cleanup; fi
 exit "$report"

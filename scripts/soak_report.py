@@ -10,12 +10,17 @@ OUT/soak.png (memory, descriptors and frame rate against time). Exits 1 if a che
     last third of the samples after the warm-up above the maximum over the first two thirds;
   - the master's exit code not 0, clients still running after it ended, or its --stats-json
     not valid JSON.
+With --heap-log NAME=FILE (a client's log at debug) and --t0 (the samples' time 0, seconds since
+the epoch), it also tabulates and plots that client's heap in use and held, from its "heap:"
+lines: a leak grows the heap in use, the allocator's high water only what is held and resident.
 Python 3 standard library plus matplotlib (Debian's python3-matplotlib) for the plot."""
 
 import argparse
 import csv
 import os
+import re
 import sys
+import time
 from collections import defaultdict
 
 
@@ -27,6 +32,28 @@ def slope(xs, ys):
     mx, my = sum(xs) / n, sum(ys) / n
     sxx = sum((x - mx) ** 2 for x in xs)
     return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx if sxx > 0 else 0.0
+
+
+HEAP_LINE = re.compile(r"^\[(\d\d):(\d\d):(\d\d(?:\.\d+)?)\] .*heap: ([\d.]+) MB in use, "
+                       r"([\d.]+) MB held; ([\d.]+) MB of freed heap released")
+
+
+def heap_samples(path, t0):
+    """[(seconds since t0, MB in use, MB held, MB released)] from a client's heap lines (their
+    times are local times of day, as spdlog writes them)."""
+    start = time.localtime(t0)
+    start_tod = start.tm_hour * 3600 + start.tm_min * 60 + start.tm_sec + (t0 % 1)
+    out = []
+    try:
+        with open(path, errors="replace") as f:
+            for line in f:
+                m = HEAP_LINE.match(line)
+                if m:
+                    tod = int(m[1]) * 3600 + int(m[2]) * 60 + float(m[3])
+                    out.append(((tod - start_tod) % 86400, float(m[4]), float(m[5]), float(m[6])))
+    except OSError:
+        pass
+    return out
 
 
 def main():
@@ -41,6 +68,8 @@ def main():
     ap.add_argument("--clients-left-running", type=int, default=0)
     ap.add_argument("--stats-ok", type=int, default=1)
     ap.add_argument("--stats-frames", type=int, default=0)
+    ap.add_argument("--t0", type=float, default=0, help="the samples' time 0 (seconds since the epoch)")
+    ap.add_argument("--heap-log", action="append", default=[], metavar="NAME=FILE")
     a = ap.parse_args()
 
     rows = defaultdict(list)  # (name, pid) -> [(seconds, rss_kb, fds, threads)]
@@ -99,11 +128,31 @@ def main():
 
     fps = [(t1, (f1 - f0) / (t1 - t0)) for (t0, f0), (t1, f1) in zip(frames, frames[1:]) if t1 > t0]
     total_frames = frames[-1][1] if frames else 0
+    heaps = {}
+    for spec in a.heap_log:
+        name, _, path = spec.partition("=")
+        heaps[name] = heap_samples(path, a.t0)
+    heap_table = ["| client | heap lines | in use after warm-up (MB) | in use at end (MB) | "
+                  "in use slope (MB/h) | held slope (MB/h) | released in all (MB) |",
+                  "|---|---:|---:|---:|---:|---:|---:|"]
+    for name, h in heaps.items():
+        w = [x for x in h if x[0] >= warm]
+        if len(w) < 2:
+            heap_table.append(f"| {name} | {len(h)} | - | - | - | - | - |")
+            continue
+        hours = [x[0] / 3600 for x in w]
+        heap_table.append(f"| {name} | {len(h)} | {w[0][1]:.1f} | {w[-1][1]:.1f} | "
+                          f"{slope(hours, [x[1] for x in w]):+.3f} | "
+                          f"{slope(hours, [x[2] for x in w]):+.3f} | {sum(x[3] for x in h):.1f} |")
+    heap_lines = (["", "Heap of the steady clients (glibc's figures, logged every 20 s after the "
+                   "client gives its freed heap back; slopes after the warm-up):", "", *heap_table]
+                  if heaps else [])
+
     lines = [f"Soak of {a.minutes:g} min ({end / 60:.1f} min sampled, warm-up {a.warmup:g} min "
              f"left out of the checks): {total_frames} frames "
              f"({total_frames / end if end else 0:.1f} per second on average), "
              f"{a.stats_frames} in --stats-json; master exit {a.master_exit}.",
-             "", f"Actions: {a.actions}.", "", *table, "",
+             "", f"Actions: {a.actions}.", "", *table, *heap_lines, "",
              "Result: " + ("all checks passed." if not failures else "FAILED:"),
              *[f"- {f}" for f in failures]]
     os.makedirs(a.out, exist_ok=True)
@@ -126,10 +175,13 @@ def main():
         style = dict(lw=1.2) if label else dict(lw=0.5, color="0.7")
         ax[0].plot([x[0] / 60 for x in s], [x[1] / 1024 for x in s], label=label, **style)
         ax[1].plot([x[0] / 60 for x in s], [x[2] for x in s], label=label, **style)
+    for name, h in heaps.items():
+        ax[0].plot([x[0] / 60 for x in h], [x[1] for x in h], ls="--", lw=1,
+                   label=f"{name}: heap in use")
     ax[2].plot([t / 60 for t, _ in fps], [v for _, v in fps], lw=0.8)
     for axis in ax:
         axis.axvline(a.warmup, color="r", ls=":", lw=0.8)
-    ax[0].set_ylabel("resident memory (MB)")
+    ax[0].set_ylabel("memory (MB)")
     ax[0].legend(fontsize=8)
     ax[1].set_ylabel("open descriptors")
     ax[2].set_ylabel("frames per second")
