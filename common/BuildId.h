@@ -8,4 +8,4 @@ namespace igi {
 // made every commit recompile the whole project.
 const char* buildId();
 
-} // namespace igi
+}  // namespace igi

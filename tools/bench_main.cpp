@@ -20,14 +20,14 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "tracing/EmbreeDevice.h"
-#include "tracing/SceneGeometry.h"
 #include "ShadowSegments.h"
 #include "TileRenderer.h"
-#include "tracing/TraceableScene.h"
 #include "render/Tile.h"
 #include "scene/SceneLoader.h"
 #include "scene/SceneState.h"
+#include "tracing/EmbreeDevice.h"
+#include "tracing/SceneGeometry.h"
+#include "tracing/TraceableScene.h"
 #include "util/ThreadPool.h"
 
 namespace {

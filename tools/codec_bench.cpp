@@ -184,7 +184,8 @@ int main(int argc, char** argv) {
     });
 
     const double decodePx = decodeTiles * pixelsPerTile, encodePx = encodeTiles * pixelsPerTile;
-    std::printf("tile: %.0f pixels, every plane but glossy, %d distinct tiles\n", pixelsPerTile, tiles);
+    std::printf("tile: %.0f pixels, every plane but glossy, %d distinct tiles\n", pixelsPerTile,
+                tiles);
     std::printf(
         "size: %.2f bytes/pixel on the wire (zstd frame %.2f, quantized before zstd %u, "
         "as floats 52)\n",

@@ -20,8 +20,8 @@ constexpr int kMaxStreamWindow = 64;
 constexpr int kMaxStreamVsls = 16384;
 
 /// How a client builds and keeps the lighting of a frame: the family of GI methods that share
-/// the cluster (client/lighting/LightingMethod.h). Accumulated frames of a still view converge the same
-/// way in every mode; the modes differ in what the first frame after a change shows.
+/// the cluster (client/lighting/LightingMethod.h). Accumulated frames of a still view converge the
+/// same way in every mode; the modes differ in what the first frame after a change shows.
 enum class GiMode : std::uint8_t {
     Igi,        ///< fresh light paths every frame (the paper's instant global illumination)
     Stream,     ///< photon streaming (Meneveaux and Bridault 2008): a pool of recent photons
@@ -160,8 +160,8 @@ struct RenderSettings {
     bool roulette = true;        ///< light paths go on by Russian roulette past the walk
     int rouletteMaxLength = 64;  ///< safety cap on a light path's vertices under roulette
     ClampCompensation clampCompensation = ClampCompensation::KolligKeller;
-    /// The sharpness budget S of the VPL bound (client/shading/ConnectionBound.h): a connection whose
-    /// two ends' sharpness multiply to more is cut down to S / (s_x s_y), and the
+    /// The sharpness budget S of the VPL bound (client/shading/ConnectionBound.h): a connection
+    /// whose two ends' sharpness multiply to more is cut down to S / (s_x s_y), and the
     /// compensation adds the rest by BRDF sampling. Only with a compensation.
     float glossyBound = 4.0f;
     /// Photons shot per set from the VPLs at mirrors and glass (diffuse-specular-diffuse

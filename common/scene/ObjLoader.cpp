@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <istream>
-#include <streambuf>
 #include <map>
 #include <set>
+#include <streambuf>
 #include <unordered_map>
 
 #include <spdlog/spdlog.h>
