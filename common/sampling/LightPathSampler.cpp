@@ -9,7 +9,7 @@ namespace igi {
 LightPathSampler::LightPathSampler(std::uint64_t seed, std::uint32_t frame, SampleStream stream,
                                    std::uint32_t setIndex, std::uint32_t pathsPerSet,
                                    std::uint32_t maxBounces)
-    : firstIndex_(setIndex * pathsPerSet), paths_(pathsPerSet), maxBounces_(maxBounces) {
+    : firstIndex_(setIndex * pathsPerSet), paths_(pathsPerSet) {
     for (unsigned d = 0; d < kEmissionDims; ++d)
         emissionScramble_[d] = scrambleBits(seed, frame, stream, d);
 

@@ -32,7 +32,6 @@ class LightPathSampler final : public LightPathNumbers {
   private:
     std::uint32_t firstIndex_;
     std::uint32_t paths_;
-    std::uint32_t maxBounces_;
     std::uint32_t emissionScramble_[kEmissionDims];
     std::vector<std::uint32_t> bounceScrambles_;  ///< [bounce - 1][dim]
     std::vector<std::uint32_t> permutations_;     ///< [bounce - 1][path]
