@@ -7,7 +7,9 @@
 #   3. scaling over 1, 2, 4, 8, 16 clients, each client in its own cgroup (v1 cpu controller)
 #      capped at the same fixed CPU share, so the ideal is linear in N as in the paper's Table 1;
 #   4. the master's ceiling (pixels/s) with replaying clients, master threads 1 and 2;
-#   5. wire bytes per pixel: the codec's figures (igi-codec-bench) and end to end.
+#   5. wire bytes per pixel: the codec's figures (igi-codec-bench) and end to end;
+#   and, in section 2, the same end-to-end rows at 1920 x 1080 (full HD) for the default scene
+#   and the glossy interior lit by 96 small lights.
 #
 # Usage: scripts/bench_performance.sh [--quick] [--raw DIR] [--doc FILE]
 #   --quick   a few-minute smoke run (fewer frames and clients, smaller images); its document
@@ -127,6 +129,7 @@ paper=(--interleave 3x3 --direct-samples 4 --indirect-vpls 18 --caustic-photons 
 if ((quick)); then
   bench_frames=1 bench_segments=1000000 bench_repeats=1
   fps_frames=4
+  fullhd_width=640 fullhd_height=360 fullhd_frames=(2 2)
   scale_counts=(1 2 4) scale_width=320 scale_height=240
   ceiling_runs=("2 640 480 24")
   stage_frames=4
@@ -134,6 +137,8 @@ if ((quick)); then
 else
   bench_frames=4 bench_segments=4000000 bench_repeats=3
   fps_frames=16
+  # Frames per full-HD scene (default, interior): each run a minute or two on 2 cores.
+  fullhd_width=1920 fullhd_height=1080 fullhd_frames=(8 4)
   scale_counts=(1 2 4 8 16) scale_width=640 scale_height=480
   # master threads, width, height, frames
   ceiling_runs=("1 640 480 80" "2 640 480 80" "1 1280 960 30" "2 1280 960 30")
@@ -148,7 +153,7 @@ scale_quota_us=2000
 scale_shares=8192
 
 rm -rf "$raw"
-mkdir -p "$raw"/{bench,fps,scaling,ceiling,codec}
+mkdir -p "$raw"/{bench,fps,fullhd,scaling,ceiling,codec}
 meta="$raw/meta.env"
 {
   echo "date=$(date -u +%Y-%m-%dT%H:%M:%SZ)"
@@ -168,6 +173,9 @@ meta="$raw/meta.env"
   echo "scale_width=$scale_width"
   echo "scale_height=$scale_height"
   echo "fps_frames=$fps_frames"
+  echo "fullhd_width=$fullhd_width"
+  echo "fullhd_height=$fullhd_height"
+  echo "fullhd_frames=${fullhd_frames[*]}"
   echo "bench_frames=$bench_frames"
   echo "bench_segments=$bench_segments"
   echo "bench_repeats=$bench_repeats"
@@ -205,6 +213,21 @@ for i in "${!scene_names[@]}"; do
       "$bin/igi-master" --scene "${scene_files[$i]}" --local-clients "$clients" \
       --frames "$fps_frames" --width 640 --height 480 "${paper[@]}" \
       --stats-json "$raw/fps/${scene_names[$i]}-c$clients.json"
+  done
+done
+
+# The same at full HD, on the default scene and a large interior (96 small lights, glossy
+# materials: the many-light case), with fewer frames.
+load fullhd
+fullhd_names=(cornell-default interior-glossy)
+fullhd_files=("$root/scenes/cornell/cornell.json" "$root/scenes/interior/glossy.json")
+for i in "${!fullhd_names[@]}"; do
+  for clients in 1 2; do
+    say "igi-master ${fullhd_names[$i]} at ${fullhd_width}x$fullhd_height, $clients local client(s), ${fullhd_frames[$i]} frames"
+    run_logged "$raw/fullhd/${fullhd_names[$i]}-c$clients.log" 1800 \
+      "$bin/igi-master" --scene "${fullhd_files[$i]}" --local-clients "$clients" \
+      --frames "${fullhd_frames[$i]}" --width "$fullhd_width" --height "$fullhd_height" \
+      "${paper[@]}" --stats-json "$raw/fullhd/${fullhd_names[$i]}-c$clients.json"
   done
 done
 

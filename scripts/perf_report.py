@@ -23,6 +23,7 @@ SCENE_LABELS = {
     "CornellBox-Original": "CornellBox-Original.obj",
     "CornellBox-Sphere": "CornellBox-Sphere.obj",
     "CornellBox-Mirror": "CornellBox-Mirror.obj",
+    "interior-glossy": "glossy interior, 96 lights (`scenes/interior/glossy.json`)",
 }
 SCENE_ORDER = list(SCENE_LABELS)
 
@@ -190,6 +191,18 @@ def parse_codec(path):
 # --- the document ------------------------------------------------------------------------------
 
 
+def end_to_end_runs(folder):
+    """The summaries of section 2's runs in `folder` (NAME-cCLIENTS.json and .log), in order."""
+    runs = []
+    for path in sorted(glob.glob(os.path.join(folder, "*.json"))):
+        name, clients = re.match(r"(.*)-c(\d+)\.json$", os.path.basename(path)).groups()
+        s = summarize_stats(load_json(path), path[:-5] + ".log")
+        s["name"] = name
+        runs.append(s)
+    runs.sort(key=lambda s: (scene_key(s["name"]), s["clients"]))
+    return runs
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--raw", required=True)
@@ -238,15 +251,11 @@ def main():
     bench.sort(key=lambda b: (scene_key(b["name"]), b["threads"]))
     results["bench"] = bench
 
-    # 2. end-to-end frame rate
-    fps = []
-    for path in sorted(glob.glob(os.path.join(raw, "fps", "*.json"))):
-        name, clients = re.match(r"(.*)-c(\d+)\.json$", os.path.basename(path)).groups()
-        s = summarize_stats(load_json(path), path[:-5] + ".log")
-        s["name"] = name
-        fps.append(s)
-    fps.sort(key=lambda s: (scene_key(s["name"]), s["clients"]))
+    # 2. end-to-end frame rate, at 640 x 480 and at full HD
+    fps = end_to_end_runs(os.path.join(raw, "fps"))
     results["fps"] = fps
+    fullhd = end_to_end_runs(os.path.join(raw, "fullhd"))
+    results["fullhd"] = fullhd
 
     # 3. scaling
     scaling = []
@@ -302,7 +311,8 @@ def main():
     plot = make_plot(scaling, meta, os.path.join(perf_dir, "scaling.png"))
     # Rendered before the file is opened for writing: render_doc keeps the blocks other scripts
     # generate (section 6) by reading them from the document it replaces.
-    text = render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_dir, stages)
+    text = render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_dir, stages,
+                      fullhd)
     with open(doc, "w") as f:
         f.write(text)
     print(f"wrote {doc} and {perf_dir}/", file=sys.stderr)
@@ -370,7 +380,31 @@ def generated_block(doc, key):
     return m.group(1) if m else None
 
 
-def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_dir, stages=()):
+FPS_HEADER = ["scene", "clients", "threads", "fps", "ms / frame", "Mrays/s", "shadow rays / px",
+              "client render ms / frame", "client waiting ms / frame", "master decode ms / frame",
+              "master composite ms / frame", "wire B / px", "distinct k / client / frame"]
+
+
+def fps_rows(runs):
+    """The rows of an end-to-end table (section 2), one per run."""
+    rows = []
+    for s in runs:
+        busy, idle = s["client_busy_ms"], s["client_idle_ms"]
+        frame = s["frame_ms"]
+        rows.append([
+            SCENE_LABELS.get(s["name"], s["name"]), s["clients"], "+".join(map(str, s["client_threads"])),
+            fmt(s["fps"], 2), fmt(frame, 0), fmt(s["rays_per_second"] / 1e6, 1),
+            fmt(s["shadow_rays_per_pixel"], 1),
+            f"{fmt(busy, 0)} ({fmt(100 * busy / frame, 0)} %)",
+            f"{fmt(idle, 0)} ({fmt(100 * idle / frame, 0)} %)",
+            fmt(s["master_decode_ms"], 1), fmt(s["master_composite_ms"], 1),
+            fmt(s["wire_bytes_per_pixel"], 2), fmt(s["distinct_sets_per_client_frame"], 1),
+        ])
+    return rows
+
+
+def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_dir, stages=(),
+               fullhd=()):
     rel_perf = os.path.relpath(perf_dir, os.path.dirname(os.path.abspath(doc)))
     quick = meta.get("quick") == "1"
     L = []
@@ -507,22 +541,7 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
       "2 cores. fps counts from the moment every client is ready (scene loaded, BVH built) "
       "to the last frame composited, with accumulation on (the default)." % meta.get("fps_frames", "?"))
     w("")
-    rows = []
-    for s in fps:
-        busy, idle = s["client_busy_ms"], s["client_idle_ms"]
-        frame = s["frame_ms"]
-        rows.append([
-            SCENE_LABELS.get(s["name"], s["name"]), s["clients"], "+".join(map(str, s["client_threads"])),
-            fmt(s["fps"], 2), fmt(frame, 0), fmt(s["rays_per_second"] / 1e6, 1),
-            fmt(s["shadow_rays_per_pixel"], 1),
-            f"{fmt(busy, 0)} ({fmt(100 * busy / frame, 0)} %)",
-            f"{fmt(idle, 0)} ({fmt(100 * idle / frame, 0)} %)",
-            fmt(s["master_decode_ms"], 1), fmt(s["master_composite_ms"], 1),
-            fmt(s["wire_bytes_per_pixel"], 2), fmt(s["distinct_sets_per_client_frame"], 1),
-        ])
-    w(table(["scene", "clients", "threads", "fps", "ms / frame", "Mrays/s", "shadow rays / px",
-             "client render ms / frame", "client waiting ms / frame", "master decode ms / frame",
-             "master composite ms / frame", "wire B / px", "distinct k / client / frame"], rows))
+    w(table(FPS_HEADER, fps_rows(fps)))
     w("")
     w("**How the frame time is split** (all from `--stats-json`): *ms / frame* is the wall time "
       "of the run over its frames (1 / fps; up to two frames are in flight, so a frame's own "
@@ -549,6 +568,38 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
           f"({fmt(best['rays_per_second'] / 1e6, 1)} M rays/s, "
           f"{fmt(best['rays_per_second'] / PAPER_RAYS_PER_CLIENT, 0)} times one of the paper's "
           f"clients).")
+        w("")
+
+    if fullhd:
+        size = f"{meta.get('fullhd_width', '?')} x {meta.get('fullhd_height', '?')}"
+        w(f"### Full HD: {size}" if size == "1920 x 1080" else
+          f"### The full-HD rows at {size} (a --quick run)")
+        w("")
+        w(f"The same command at `--width {meta.get('fullhd_width', '?')} --height "
+          f"{meta.get('fullhd_height', '?')}`, on the default scene and on the glossy interior lit "
+          f"by 96 small lights (frames: {meta.get('fullhd_frames', '?')}), 1 and 2 local clients. "
+          "fps here includes the first frame's pipeline fill, which weighs more with fewer "
+          "frames. The scaling over clients (section 3) is not run at this size: a client capped "
+          "at a sixteenth of a core would take minutes per frame.")
+        w("")
+        w(table(FPS_HEADER, fps_rows(fullhd)))
+        w("")
+        by_name = {}
+        for s in fullhd:
+            by_name.setdefault(s["name"], []).append(s)
+        for name, runs in by_name.items():
+            small = [f for f in fps if f["name"] == name]
+            best_hd = max(runs, key=lambda r: r["fps"])
+            if small:
+                best_small = max(small, key=lambda r: r["fps"])
+                ratio = (best_hd["fps"] * best_hd["width"] * best_hd["height"]) / (
+                    best_small["fps"] * best_small["width"] * best_small["height"])
+                w(f"- {SCENE_LABELS.get(name, name)}: {fmt(best_hd['fps'], 2)} fps at full HD "
+                  f"against {fmt(best_small['fps'], 2)} at 640 x 480: {fmt(ratio, 2)} times the "
+                  f"pixels per second (1: the cost per pixel does not depend on the size).")
+            else:
+                w(f"- {SCENE_LABELS.get(name, name)}: {fmt(best_hd['fps'], 2)} fps at full HD "
+                  f"({fmt(best_hd['pixels_per_second'] / 1e6, 2)} M pixels/s).")
         w("")
 
     # 3 -----------------------------------------------------------------------------------------
