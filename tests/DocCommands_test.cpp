@@ -97,7 +97,7 @@ const std::vector<SkipRule>& skipRules() {
         {"", std::regex(R"(^(sudo )?scripts/fresh_machine_check\.sh(\s|$))"),
          "both README commands on a new debootstrapped Debian root: root only, 20-40 minutes"},
         {"", std::regex(R"(^(FUZZ_TARGETS=\S+ )?scripts/fuzz\.sh(\s|$))"),
-         "a long libFuzzer run (600 s per target by default; the test command runs the short ones)"},
+         "a long libFuzzer run (600 s per target by default; the test command runs short ones)"},
         {"", std::regex(R"(^(IGI_BUILD=\S+ )?scripts/bench_[a-z_]+\.sh(\s|$))"),
          "a benchmark of several minutes that rewrites docs/ (PERFORMANCE.md, ACCURACY.md)"},
         {"", std::regex(R"(^scripts/equal_time\.py(\s|$))"),
