@@ -1,6 +1,7 @@
 #include "render/RowAccumulator.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <type_traits>
 
 #include "image/ImageCompare.h"
@@ -59,11 +60,21 @@ IGI_LANES D ownVariance(const double* at, D inv, D invDegrees) {
     return stdMax(splat<D>(0.0), d2 * inv - d * d) * invDegrees;
 }
 
-struct Layout {
+}  // namespace
+
+struct RowAccumulator::Layout {
     int blocks;
     int fields;
     bool withdraw;
     int even;  ///< the first field of the even frames' sums
+    /// Per pixel (varying counts, RowAccumulator::prepareFrame): the frames in its sums and,
+    /// of them, those of the first half, each a row of blocks * kBlock doubles in cell order;
+    /// null while every pixel has every frame (then the frame counts are the same for all).
+    double* counts = nullptr;
+    double* firstHalfCounts = nullptr;
+    /// blurTolerance(n) for n = 0 .. the largest count (varying counts).
+    const double* tolerance = nullptr;
+    std::size_t entries() const { return std::size_t(blocks) * kBlock; }
     double* block(std::vector<double>& sums, int y, int b) const {
         return sums.data() + (std::size_t(y) * blocks + b) * fields * kBlock;
     }
@@ -71,6 +82,11 @@ struct Layout {
         return sums.data() + (std::size_t(y) * blocks + b) * fields * kBlock;
     }
 };
+
+namespace {
+
+using namespace lanes;
+using Layout = RowAccumulator::Layout;
 
 /// Adds the lanes of `v` to the doubles at `sums` (its two halves).
 template <class V>
@@ -81,10 +97,23 @@ IGI_LANES void addTo(double* sums, V v) {
     store(sums + kHalf, loadDoubles<D>(sums + kHalf) + highHalf(v));
 }
 
-/// Accumulator::addRows for one row; `framesBefore` frames are in.
-template <class V>
+/// The variance addRow writes where each pixel has its own count: ownVariance after `after`
+/// frames (0 while there is one), lane by lane.
+template <class D>
+IGI_LANES D varyingVariance(const double* at, D after) {
+    const D one = splat<D>(1.0), zero = splat<D>(0.0);
+    const auto some = after > zero, several = after > one;
+    const D inv = select(some, one / select(some, after, one), zero);
+    const D invDegrees = select(several, one / select(several, after - one, one), zero);
+    return select(several, ownVariance(at, inv, invDegrees), zero);
+}
+
+/// Accumulator::addRows for one row; `framesBefore` frames are in. Varying: each pixel has its
+/// own count (l.counts), and `rendered` (cell order, null: all) says which pixels this frame
+/// has: the others' sums and counts are left exactly as they are.
+template <class V, bool Varying>
 IGI_LANES void addRowBody(const Layout& l, std::vector<double>& sums, int y, const ShadedRow& row,
-                          int framesBefore, double* variance) {
+                          int framesBefore, const float* rendered, double* variance) {
     using D = Half<V>;
     constexpr int kWidth = kLanes<V>, kHalf = kWidth / 2;
     // The variance after this frame, of framesBefore + 1 frames (0 while there is one).
@@ -92,6 +121,8 @@ IGI_LANES void addRowBody(const Layout& l, std::vector<double>& sums, int y, con
     const D invDegrees = splat<D>(framesBefore > 0 ? 1.0 / framesBefore : 0.0);
     const std::size_t blockBytes = std::size_t(l.fields) * kBlock * sizeof(double);
     const bool even = RowAccumulator::inFirstHalf(framesBefore);
+    double* counts = Varying ? l.counts + std::size_t(y) * l.entries() : nullptr;
+    double* firstHalfCounts = Varying ? l.firstHalfCounts + std::size_t(y) * l.entries() : nullptr;
     for (int b = 0; b < l.blocks; ++b) {
         double* block = l.block(sums, y, b);
         // The sums stream from memory: ask for the blocks a few ahead.
@@ -101,14 +132,30 @@ IGI_LANES void addRowBody(const Layout& l, std::vector<double>& sums, int y, con
         for (int j = 0; j < kBlock; j += kWidth) {
             const int i = b * kBlock + j;
             double* s = block + j;
-            const V f[3] = {load<V>(row[S::kFr] + i), load<V>(row[S::kFg] + i),
-                            load<V>(row[S::kFb] + i)};
+            V f[3] = {load<V>(row[S::kFr] + i), load<V>(row[S::kFg] + i), load<V>(row[S::kFb] + i)};
+            // Varying: a pixel not rendered adds exact zeros (selected, so that whatever the
+            // frame holds there, even a NaN, never reaches its sums) and no count.
+            [[maybe_unused]] Ints<V> hasMask{};
+            if constexpr (Varying) {
+                const V has = rendered ? load<V>(rendered + i) : splat<V>(1.0f);
+                hasMask = has != splat<V>(0.0f);
+                for (int c = 0; c < 3; ++c) f[c] = select(hasMask, f[c], splat<V>(0.0f));
+                const D h[2] = {lowHalf(has), highHalf(has)};
+                for (int k = 0; k < 2; ++k) {
+                    double* n = counts + i + k * kHalf;
+                    store(n, loadDoubles<D>(n) + h[k]);
+                    if (!even) continue;
+                    double* nA = firstHalfCounts + i + k * kHalf;
+                    store(nA, loadDoubles<D>(nA) + h[k]);
+                }
+            }
             for (int c = 0; c < 3; ++c) addTo(s + (kFilteredSum + c) * kBlock, f[c]);
             if (even)
                 for (int c = 0; c < 3; ++c) addTo(s + (l.even + c) * kBlock, f[c]);
             if (!l.withdraw) continue;
-            const V u[3] = {load<V>(row[S::kUr] + i), load<V>(row[S::kUg] + i),
-                            load<V>(row[S::kUb] + i)};
+            V u[3] = {load<V>(row[S::kUr] + i), load<V>(row[S::kUg] + i), load<V>(row[S::kUb] + i)};
+            if constexpr (Varying)
+                for (int c = 0; c < 3; ++c) u[c] = select(hasMask, u[c], splat<V>(0.0f));
             for (int c = 0; c < 3; ++c) addTo(s + (kUnfilteredSum + c) * kBlock, u[c]);
             if (even)
                 for (int c = 0; c < 3; ++c) addTo(s + (l.even + 3 + c) * kBlock, u[c]);
@@ -117,34 +164,45 @@ IGI_LANES void addRowBody(const Layout& l, std::vector<double>& sums, int y, con
             double* d2 = s + kDifference2 * kBlock;
             for (int h = 0; h < 2; ++h) {
                 store(d2 + h * kHalf, loadDoubles<D>(d2 + h * kHalf) + d[h] * d[h]);
-                store(variance + i + h * kHalf, framesBefore > 0
-                                                    ? ownVariance(s + h * kHalf, inv, invDegrees)
-                                                    : splat<D>(0.0));
+                if constexpr (Varying)
+                    store(variance + i + h * kHalf,
+                          varyingVariance(s + h * kHalf, loadDoubles<D>(counts + i + h * kHalf)));
+                else
+                    store(variance + i + h * kHalf,
+                          framesBefore > 0 ? ownVariance(s + h * kHalf, inv, invDegrees)
+                                           : splat<D>(0.0));
             }
         }
     }
 }
 
-template <class V>
+template <class V, bool Varying>
 IGI_LANES void varianceRowBody(const Layout& l, const std::vector<double>& sums, int y, int frames,
                                double* variance) {
     using D = Half<V>;
     constexpr int kHalf = kLanes<V> / 2;
     const D inv = splat<D>(1.0 / double(frames));
     const D invDegrees = splat<D>(frames > 1 ? 1.0 / double(frames - 1) : 0.0);
+    const double* counts = Varying ? l.counts + std::size_t(y) * l.entries() : nullptr;
     for (int b = 0; b < l.blocks; ++b)
-        for (int j = 0; j < kBlock; j += kHalf)
-            store(
-                variance + b * kBlock + j,
-                frames > 1 ? ownVariance(l.block(sums, y, b) + j, inv, invDegrees) : splat<D>(0.0));
+        for (int j = 0; j < kBlock; j += kHalf) {
+            const double* at = l.block(sums, y, b) + j;
+            if constexpr (Varying)
+                store(variance + b * kBlock + j,
+                      varyingVariance(at, loadDoubles<D>(counts + b * kBlock + j)));
+            else
+                store(variance + b * kBlock + j,
+                      frames > 1 ? ownVariance(at, inv, invDegrees) : splat<D>(0.0));
+        }
 }
 
 /// Per-thread arrays of meanRow.
 struct MeanScratch {
-    RowPlanes<3> mean;            // the mean's R, G, B in cell order
-    std::vector<double> weight;   // the filtered mean's weight in the blend (withdrawBlur)
-    std::vector<double> columns;  // the window's variances summed down its rows
-    std::vector<double> pooled;   // the larger of a pixel's variance and its window's mean
+    RowPlanes<3> mean;              // the mean's R, G, B in cell order
+    std::vector<double> weight;     // the filtered mean's weight in the blend (withdrawBlur)
+    std::vector<double> columns;    // the window's variances summed down its rows
+    std::vector<double> pooled;     // the larger of a pixel's variance and its window's mean
+    std::vector<double> tolerance;  // each pixel's blurTolerance (varying counts)
 };
 
 MeanScratch& meanScratch(const CellOrder& order, std::size_t entries) {
@@ -153,6 +211,7 @@ MeanScratch& meanScratch(const CellOrder& order, std::size_t entries) {
     scratch.columns.resize(entries + kBlock);
     scratch.pooled.resize(entries + kBlock);
     scratch.weight.resize(entries + kBlock);
+    scratch.tolerance.resize(entries + kBlock);
     return scratch;
 }
 
@@ -206,15 +265,26 @@ IGI_LANES void poolVariance(const Pool& p, const double* own, const double* colu
 
 /// The estimated relMSE of each pixel of row y's mean after `frames` (>= 2) frames, in cell
 /// order, from the sums; `weight`: the filtered mean's weight in the blend (null: 1); `mean`:
-/// the mean's R, G, B as shown (floats, cell order). RowAccumulator::meanRow says why.
+/// the mean's R, G, B as shown (floats, cell order). RowAccumulator::meanRow says why. With
+/// varying counts (l.counts) each pixel's own `frames` and `firstHalf`: 0 where a half has
+/// none.
 void estimateErrors(const Layout& l, const std::vector<double>& sums, int y, int frames,
                     int firstHalf, int width, const double* weight, float* const* mean,
                     double* error) {
-    // nA frames went to the first half's sums (RowAccumulator::inFirstHalf), nB to the other.
-    const double n = double(frames), nA = double(firstHalf), nB = n - nA;
-    // Var(mean) = E[(A - B)^2] nA nB / n^2 (see meanRow); the 1/3 averages the channels.
-    const double scale = nA * nB / (n * n) / 3.0;
+    const double* counts = l.counts ? l.counts + std::size_t(y) * l.entries() : nullptr;
+    const double* firstHalfCounts =
+        l.counts ? l.firstHalfCounts + std::size_t(y) * l.entries() : nullptr;
     for (int i = 0; i < width; ++i) {
+        // nA frames went to the first half's sums (RowAccumulator::inFirstHalf), nB to the
+        // other.
+        const double n = counts ? counts[i] : double(frames);
+        const double nA = counts ? firstHalfCounts[i] : double(firstHalf), nB = n - nA;
+        if (nA < 1.0 || nB < 1.0) {  // a half without a frame: no spread to see
+            error[i] = 0.0;
+            continue;
+        }
+        // Var(mean) = E[(A - B)^2] nA nB / n^2 (see meanRow); the 1/3 averages the channels.
+        const double scale = nA * nB / (n * n) / 3.0;
         const double* s = l.block(sums, y, i / kBlock) + i % kBlock;
         const double w = weight ? weight[i] : 1.0;
         double e = 0.0;
@@ -251,7 +321,8 @@ void writeErrors(const Mean& m, const std::vector<double>& sums, int y, int fram
                  const double* weight, float* const* mean, float* error) {
     if (!error) return;
     const int width = m.order.width();
-    if (frames < 2 || m.firstHalf < 1 || m.firstHalf >= frames) {  // a half without a frame
+    if (!m.l.counts &&
+        (frames < 2 || m.firstHalf < 1 || m.firstHalf >= frames)) {  // a half without a frame
         std::fill_n(error, width, 0.0f);
         return;
     }
@@ -261,7 +332,15 @@ void writeErrors(const Mean& m, const std::vector<double>& sums, int y, int fram
     for (int x = 0; x < width; ++x) error[x] = float(cells[std::size_t(m.order.position(x))]);
 }
 
-template <class V>
+/// 1 / n lane by lane, 0 where n is 0 (a pixel with no frame yet).
+template <class D>
+IGI_LANES D inverseCounts(D n) {
+    const D one = splat<D>(1.0), zero = splat<D>(0.0);
+    const auto some = n > zero;
+    return select(some, one / select(some, n, one), zero);
+}
+
+template <class V, bool Varying>
 IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y, int frames,
                            const double* const* variance, glm::vec3* out, float* error) {
     using D = Half<V>;
@@ -270,20 +349,32 @@ IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y
     MeanScratch& scratch = meanScratch(m.order, std::size_t(l.blocks) * kBlock);
     float* mean[3] = {scratch.mean[0], scratch.mean[1], scratch.mean[2]};
     const D inv = splat<D>(frames > 0 ? 1.0 / double(frames) : 0.0);
-    if (!l.withdraw || frames < 2) {
+    const double* counts = Varying ? l.counts + std::size_t(y) * l.entries() : nullptr;
+    // Each lane's 1 / (its frames): the image's in common, or the pixel's own.
+    const auto invAt = [&](int i) {
+        if constexpr (Varying)
+            return inverseCounts(loadDoubles<D>(counts + i));
+        else
+            return inv;
+    };
+    if (!l.withdraw || (!Varying && frames < 2)) {
         for (int b = 0; b < l.blocks; ++b)
             for (int j = 0; j < kBlock; j += kWidth) {
                 const double* s = l.block(sums, y, b) + j;
+                const int i = b * kBlock + j;
                 for (int c = 0; c < 3; ++c) {
                     const double* field = s + (kFilteredSum + c) * kBlock;
-                    store(mean[c] + b * kBlock + j,
-                          narrow(loadDoubles<D>(field) * inv, loadDoubles<D>(field + kHalf) * inv));
+                    store(mean[c] + i, narrow(loadDoubles<D>(field) * invAt(i),
+                                              loadDoubles<D>(field + kHalf) * invAt(i + kHalf)));
                 }
             }
         writeErrors(m, sums, y, frames, nullptr, mean, error);
         return toImageOrderStreamed(m.order, mean[0], mean[1], mean[2], out);
     }
-    const D tolerance = splat<D>(Accumulator::blurTolerance(frames));
+    const D tolerance = splat<D>(Varying ? 0.0 : Accumulator::blurTolerance(frames));
+    if constexpr (Varying)
+        for (std::size_t i = 0; i < l.entries(); ++i)
+            scratch.tolerance[i] = l.tolerance[std::size_t(counts[i])];
     const int y0 = filterWindowStart(y, m.noiseY, m.height);
     const int y1 = std::min(m.height, y0 + m.noiseY);
     const double* own = variance[y - y0];
@@ -307,19 +398,28 @@ IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y
             const double* s = l.block(sums, y, b) + j;
             D halves[3][2];
             for (int h = 0; h < 2; ++h) {
+                const int i = b * kBlock + j + h * kHalf;
                 const double* at = s + h * kHalf;
                 D f[3], u[3];
-                loadMeans(at, inv, f, u);
+                loadMeans(at, invAt(i), f, u);
                 const D d = luminance(f[0], f[1], f[2]) - luminance(u[0], u[1], u[2]);
-                const D allowed = tolerance * loadDoubles<D>(pooled + b * kBlock + j + h * kHalf);
+                const D laneTolerance =
+                    Varying ? loadDoubles<D>(scratch.tolerance.data() + i) : tolerance;
+                const D allowed = laneTolerance * loadDoubles<D>(pooled + i);
                 const D d2 = d * d;
                 // Where every lane keeps the filtered mean (most of a converged image), no
                 // division: its quotients would all be dropped.
-                const auto keep = d2 <= allowed;
+                auto keep = d2 <= allowed;
+                // A pixel of one frame has no spread: it shows its filtered frame, as the
+                // whole image does after one frame.
+                if constexpr (Varying) keep |= loadDoubles<D>(counts + i) < splat<D>(2.0);
                 const D w =
                     allTrue(keep) ? splat<D>(1.0) : select(keep, splat<D>(1.0), allowed / d2);
-                for (int c = 0; c < 3; ++c) halves[c][h] = w * f[c] + (splat<D>(1.0) - w) * u[c];
-                if (error) store(scratch.weight.data() + b * kBlock + j + h * kHalf, w);
+                for (int c = 0; c < 3; ++c) {
+                    halves[c][h] = w * f[c] + (splat<D>(1.0) - w) * u[c];
+                    if constexpr (Varying) halves[c][h] = select(keep, f[c], halves[c][h]);
+                }
+                if (error) store(scratch.weight.data() + i, w);
             }
             for (int c = 0; c < 3; ++c)
                 store(mean[c] + b * kBlock + j, narrow(halves[c][0], halves[c][1]));
@@ -330,30 +430,36 @@ IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y
 }
 
 void addRowBaseline(const Layout& l, std::vector<double>& sums, int y, const ShadedRow& row,
-                    int framesBefore, double* variance) {
-    addRowBody<F4>(l, sums, y, row, framesBefore, variance);
+                    int framesBefore, const float* rendered, double* variance) {
+    if (l.counts) return addRowBody<F4, true>(l, sums, y, row, framesBefore, rendered, variance);
+    addRowBody<F4, false>(l, sums, y, row, framesBefore, rendered, variance);
 }
 void varianceRowBaseline(const Layout& l, const std::vector<double>& sums, int y, int frames,
                          double* variance) {
-    varianceRowBody<F4>(l, sums, y, frames, variance);
+    if (l.counts) return varianceRowBody<F4, true>(l, sums, y, frames, variance);
+    varianceRowBody<F4, false>(l, sums, y, frames, variance);
 }
 void meanRowBaseline(const Mean& m, const std::vector<double>& sums, int y, int frames,
                      const double* const* variance, glm::vec3* out, float* error) {
-    meanRowBody<F4>(m, sums, y, frames, variance, out, error);
+    if (m.l.counts) return meanRowBody<F4, true>(m, sums, y, frames, variance, out, error);
+    meanRowBody<F4, false>(m, sums, y, frames, variance, out, error);
 }
 
 #if IGI_HAS_AVX2_TARGET
 IGI_AVX2 void addRowAvx2(const Layout& l, std::vector<double>& sums, int y, const ShadedRow& row,
-                         int framesBefore, double* variance) {
-    addRowBody<F8>(l, sums, y, row, framesBefore, variance);
+                         int framesBefore, const float* rendered, double* variance) {
+    if (l.counts) return addRowBody<F8, true>(l, sums, y, row, framesBefore, rendered, variance);
+    addRowBody<F8, false>(l, sums, y, row, framesBefore, rendered, variance);
 }
 IGI_AVX2 void varianceRowAvx2(const Layout& l, const std::vector<double>& sums, int y, int frames,
                               double* variance) {
-    varianceRowBody<F8>(l, sums, y, frames, variance);
+    if (l.counts) return varianceRowBody<F8, true>(l, sums, y, frames, variance);
+    varianceRowBody<F8, false>(l, sums, y, frames, variance);
 }
 IGI_AVX2 void meanRowAvx2(const Mean& m, const std::vector<double>& sums, int y, int frames,
                           const double* const* variance, glm::vec3* out, float* error) {
-    meanRowBody<F8>(m, sums, y, frames, variance, out, error);
+    if (m.l.counts) return meanRowBody<F8, true>(m, sums, y, frames, variance, out, error);
+    meanRowBody<F8, false>(m, sums, y, frames, variance, out, error);
 }
 #endif
 
@@ -371,18 +477,47 @@ void RowAccumulator::reset(const CellOrder& order, int height, bool withdrawBlur
     blocks_ = (order.width() + kBlock - 1) / kBlock;
     fields_ = withdrawBlur ? kEvenWithdraw + 6 : kEvenPlain + 3;
     sums_.assign(std::size_t(height) * blocks_ * fields_ * kBlock, 0.0);
+    counts_.clear();
+    firstHalfCounts_.clear();
+    tolerance_.clear();
 }
 
-void RowAccumulator::addRow(int y, const ShadedRow& row, double* variance, Isa isa) {
-    const Layout l{blocks_, fields_, withdrawBlur_, withdrawBlur_ ? kEvenWithdraw : kEvenPlain};
+void RowAccumulator::prepareFrame(bool partial) {
+    if (partial && counts_.empty()) {
+        // From now on each pixel counts its own frames: so far every pixel has every frame.
+        const std::size_t entries = std::size_t(height_) * varianceEntries();
+        counts_.assign(entries, double(frames_));
+        firstHalfCounts_.assign(entries, double(firstHalf_));
+    }
+    // A pixel has at most the frames so far and this one.
+    while (!counts_.empty() && tolerance_.size() < std::size_t(frames_) + 2)
+        tolerance_.push_back(Accumulator::blurTolerance(int(tolerance_.size())));
+}
+
+RowAccumulator::Layout RowAccumulator::layout() const {
+    Layout l{blocks_, fields_, withdrawBlur_, withdrawBlur_ ? kEvenWithdraw : kEvenPlain};
+    if (!counts_.empty()) {
+        // The kernels write a row's counts only in addRow, each row by one thread.
+        l.counts = const_cast<double*>(counts_.data());
+        l.firstHalfCounts = const_cast<double*>(firstHalfCounts_.data());
+        l.tolerance = tolerance_.data();
+    }
+    return l;
+}
+
+void RowAccumulator::addRow(int y, const ShadedRow& row, double* variance, const float* rendered,
+                            Isa isa) {
+    if (rendered && counts_.empty())
+        throw std::logic_error("RowAccumulator: a partial frame without prepareFrame(true)");
+    const Layout l = layout();
 #if IGI_HAS_AVX2_TARGET
-    if (isa == Isa::kAvx2) return addRowAvx2(l, sums_, y, row, frames_, variance);
+    if (isa == Isa::kAvx2) return addRowAvx2(l, sums_, y, row, frames_, rendered, variance);
 #endif
-    addRowBaseline(l, sums_, y, row, frames_, variance);
+    addRowBaseline(l, sums_, y, row, frames_, rendered, variance);
 }
 
 void RowAccumulator::varianceRow(int y, int frames, double* variance, Isa isa) const {
-    const Layout l{blocks_, fields_, withdrawBlur_, withdrawBlur_ ? kEvenWithdraw : kEvenPlain};
+    const Layout l = layout();
 #if IGI_HAS_AVX2_TARGET
     if (isa == Isa::kAvx2) return varianceRowAvx2(l, sums_, y, frames, variance);
 #endif
@@ -391,7 +526,7 @@ void RowAccumulator::varianceRow(int y, int frames, double* variance, Isa isa) c
 
 void RowAccumulator::meanRow(int y, int frames, const double* const* variance, glm::vec3* out,
                              float* error, Isa isa) const {
-    const Layout l{blocks_, fields_, withdrawBlur_, withdrawBlur_ ? kEvenWithdraw : kEvenPlain};
+    const Layout l = layout();
     // Before endFrame, `frames` = frames() + 1 counts the frame being added.
     const int firstHalf = firstHalf_ + (frames > frames_ && inFirstHalf(frames_) ? 1 : 0);
     const Mean m{l, order_, height_, noiseX_, noiseY_, firstHalf};
@@ -399,6 +534,11 @@ void RowAccumulator::meanRow(int y, int frames, const double* const* variance, g
     if (isa == Isa::kAvx2) return meanRowAvx2(m, sums_, y, frames, variance, out, error);
 #endif
     meanRowBaseline(m, sums_, y, frames, variance, out, error);
+}
+
+double RowAccumulator::frameCount(int x, int y) const {
+    if (counts_.empty()) return frames_;
+    return counts_[std::size_t(y) * varianceEntries() + std::size_t(order_.position(x))];
 }
 
 bool RowAccumulator::inFirstHalf(int frame) {

@@ -23,9 +23,19 @@ class RowAccumulator {
     /// As Accumulator::reset, for rows of `order`.
     void reset(const CellOrder& order, int height, bool withdrawBlur = false, int noiseX = 1,
                int noiseY = 1);
+    /// Before a frame's rows are added (one thread, none adding or reading): `partial` if it
+    /// does not render every pixel (adaptive tiles). From the first partial frame on, each
+    /// pixel counts the frames in its own sums, and its mean, variance and estimated error
+    /// rest on its own count; until then, and for a session that never has one, the counts are
+    /// the image's and the arithmetic is unchanged, bit for bit.
+    void prepareFrame(bool partial);
     /// Adds row y of a frame (its filtered planes and, with withdrawBlur, its unfiltered ones)
     /// and writes the row's variance after it (varianceEntries() doubles, cell order).
-    void addRow(int y, const ShadedRow& row, double* variance, lanes::Isa isa = lanes::bestIsa());
+    /// `rendered` (varianceEntries() floats, cell order; null: every pixel): 0 where the frame
+    /// has no sample, whose sums and count then stay exactly as they were (the frame's values
+    /// there are never read into them). Only after prepareFrame(true).
+    void addRow(int y, const ShadedRow& row, double* variance, const float* rendered = nullptr,
+                lanes::Isa isa = lanes::bestIsa());
     void endFrame() {
         firstHalf_ += inFirstHalf(frames_) ? 1 : 0;
         ++frames_;
@@ -39,7 +49,8 @@ class RowAccumulator {
     /// means differ by a bias that no number of frames removes (measured: the estimate stopped
     /// falling at 9e-4 on CornellBox-Original while the true relMSE fell to 8e-5).
     static bool inFirstHalf(int frame);
-    /// What addRow wrote for row y, given the sums after `frames` frames.
+    /// What addRow wrote for row y, given the sums after `frames` frames (with per-pixel
+    /// counts, after each pixel's own).
     void varianceRow(int y, int frames, double* variance, lanes::Isa isa = lanes::bestIsa()) const;
     /// The mean of row y after `frames` frames, written to `out` (an image row, image order)
     /// with streamed stores: call streamedStoresDone() (CellOrder.h) before another thread reads
@@ -76,7 +87,13 @@ class RowAccumulator {
     /// Entries of a variance row (the width, rounded up to whole lanes).
     std::size_t varianceEntries() const { return std::size_t(blocks_) * kPixelsPerBlock; }
 
+    /// Frames added (partial ones included).
     int frames() const { return frames_; }
+    /// The frames in pixel (x, y)'s sums: frames() unless some frame did not render it.
+    double frameCount(int x, int y) const;
+    /// Whether pixels count their own frames (a partial frame came since the last reset).
+    bool countsPerPixel() const { return !counts_.empty(); }
+    struct Layout;  ///< the kernels' view of the sums (RowAccumulator.cpp)
     bool withdrawsBlur() const { return withdrawBlur_; }
 
   private:
@@ -95,6 +112,14 @@ class RowAccumulator {
     /// RGB (meanRow's error).
     int fields_ = 6;
     std::vector<double> sums_;
+    /// Per pixel (cell order, varianceEntries() a row), once a frame was partial: the frames
+    /// in its sums and, of them, the first half's. Doubles, as the kernels read them.
+    std::vector<double> counts_;
+    std::vector<double> firstHalfCounts_;
+    /// Accumulator::blurTolerance(n) for every count a pixel can have.
+    std::vector<double> tolerance_;
+
+    Layout layout() const;
 };
 
 }  // namespace igi

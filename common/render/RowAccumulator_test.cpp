@@ -1,7 +1,9 @@
 #include "render/RowAccumulator.h"
 
+#include <cmath>
 #include <cstring>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -73,7 +75,8 @@ TEST(RowAccumulator, EqualsAccumulatorBitForBit) {
                                         shaded[ShadedRow::kUr + c][i] = unfiltered[p][c];
                                     }
                                 }
-                                rows.addRow(y, shaded, variance[std::size_t(y)].data(), isa);
+                                rows.addRow(y, shaded, variance[std::size_t(y)].data(), nullptr,
+                                            isa);
                             }
                             const int after = rows.frames() + 1;
                             for (int pass = 0; pass < 2; ++pass) {  // before and after endFrame
@@ -213,6 +216,153 @@ TEST(RowAccumulator, SeesTheFirstFramesBias) {
             (double(bias) / n) * (bias / n) * (other / own) / (shown * shown + 0.01);
         EXPECT_NEAR(estimate, expected, 1e-6 * expected) << n << " frames";
     }
+}
+
+/// What the compositor does with one frame, image order in and out: adds it (`rendered`, image
+/// order, 1 or 0 per pixel: null for every pixel), ends it, and reads every row's mean and
+/// estimated error after it.
+struct Readout {
+    std::vector<glm::vec3> mean;
+    std::vector<float> error;
+};
+Readout addFrame(RowAccumulator& rows, const CellOrder& order, int w, int h,
+                 const std::vector<glm::vec3>& filtered, const std::vector<glm::vec3>& unfiltered,
+                 const std::vector<float>* rendered, lanes::Isa isa) {
+    std::vector<std::vector<double>> variance(std::size_t(h),
+                                              std::vector<double>(rows.varianceEntries()));
+    ShadedRow shaded;
+    shaded.resize(w);
+    std::vector<float> mask(rows.varianceEntries(), 1.0f);
+    rows.prepareFrame(rendered != nullptr);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const std::size_t p = std::size_t(y) * w + x;
+            for (int c = 0; c < 3; ++c) {
+                shaded[ShadedRow::kFr + c][order.position(x)] = filtered[p][c];
+                shaded[ShadedRow::kUr + c][order.position(x)] = unfiltered[p][c];
+            }
+            if (rendered) mask[std::size_t(order.position(x))] = (*rendered)[p];
+        }
+        rows.addRow(y, shaded, variance[std::size_t(y)].data(), rendered ? mask.data() : nullptr,
+                    isa);
+    }
+    rows.endFrame();
+    Readout out{std::vector<glm::vec3>(std::size_t(w) * h), std::vector<float>(std::size_t(w) * h)};
+    for (int y = 0; y < h; ++y) {
+        const auto [first, last] = rows.meanWindow(y);
+        std::vector<const double*> window;
+        for (int k = first; k < last; ++k) window.push_back(variance[std::size_t(k)].data());
+        rows.meanRow(y, rows.frames(), window.data(), out.mean.data() + std::size_t(y) * w,
+                     out.error.data() + std::size_t(y) * w, isa);
+    }
+    return out;
+}
+
+void expectSame(const Readout& got, const Readout& expected, std::size_t p,
+                const std::string& what) {
+    EXPECT_EQ(std::memcmp(&got.mean[p], &expected.mean[p], sizeof(glm::vec3)), 0)
+        << what << " pixel " << p << ": " << got.mean[p].x << " vs " << expected.mean[p].x;
+    EXPECT_EQ(got.error[p], expected.error[p]) << what << " pixel " << p;
+}
+
+// Counting frames per pixel (adaptive tiles) must not move a bit while every pixel has every
+// frame: the same frames with per-pixel counts from the third frame on (all rendered) and
+// without them give the same means and estimates, in every window, cell order and instruction
+// set.
+TEST(RowAccumulator, PerPixelCountsOfFullFramesChangeNothing) {
+    const int windows[][2] = {{3, 3}, {1, 1}, {4, 2}};
+    for (const auto& window : windows)
+        for (const bool withdraw : {true, false})
+            for (const int cells : {1, 3})
+                for (const lanes::Isa isa : isas()) {
+                    const int w = 21, h = 9;
+                    const CellOrder order(w, cells);
+                    RowAccumulator uniform, counting;
+                    uniform.reset(order, h, withdraw, window[0], window[1]);
+                    counting.reset(order, h, withdraw, window[0], window[1]);
+                    const std::vector<float> all(std::size_t(w) * h, 1.0f);
+                    std::mt19937 rng(11);
+                    std::vector<glm::vec3> filtered, unfiltered;
+                    for (int frame = 0; frame < 6; ++frame) {
+                        randomImages(w, h, rng, filtered, unfiltered);
+                        const Readout a =
+                            addFrame(uniform, order, w, h, filtered, unfiltered, nullptr, isa);
+                        const Readout b = addFrame(counting, order, w, h, filtered, unfiltered,
+                                                   frame >= 2 ? &all : nullptr, isa);
+                        EXPECT_EQ(counting.countsPerPixel(), frame >= 2);
+                        for (std::size_t p = 0; p < a.mean.size(); ++p)
+                            expectSame(b, a, p, "frame " + std::to_string(frame));
+                    }
+                }
+}
+
+// A pixel a frame does not render keeps its sums: with a window of one pixel (no pooling
+// across pixels), the pixels left out from the fourth frame on show, after eight frames, the
+// mean and estimate of an accumulation of their first three frames, bit for bit; the others
+// those of all eight; and their counts say so.
+TEST(RowAccumulator, PixelsLeftOutKeepTheirMeanAndEstimate) {
+    for (const bool withdraw : {true, false})
+        for (const lanes::Isa isa : isas()) {
+            const int w = 19, h = 6;
+            const CellOrder order(w, 2);
+            RowAccumulator partial, first3, all8;
+            for (RowAccumulator* r : {&partial, &first3, &all8}) r->reset(order, h, withdraw);
+            std::vector<float> rendered(std::size_t(w) * h, 1.0f);
+            for (std::size_t p = 0; p < rendered.size(); ++p)
+                if ((p % 7) < 3) rendered[p] = 0.0f;  // left out from the fourth frame on
+            std::mt19937 rng(5);
+            std::vector<glm::vec3> filtered, unfiltered;
+            Readout got, early, full;
+            for (int frame = 0; frame < 8; ++frame) {
+                randomImages(w, h, rng, filtered, unfiltered);
+                if (frame >= 3)  // what a frame holds where it renders nothing must not count
+                    for (std::size_t p = 0; p < filtered.size(); ++p)
+                        if (rendered[p] == 0.0f) filtered[p] = glm::vec3(frame % 2 ? NAN : 1e30f);
+                got = addFrame(partial, order, w, h, filtered, unfiltered,
+                               frame >= 3 ? &rendered : nullptr, isa);
+                if (frame < 3)
+                    early = addFrame(first3, order, w, h, filtered, unfiltered, nullptr, isa);
+                full = addFrame(all8, order, w, h, filtered, unfiltered, nullptr, isa);
+            }
+            for (std::size_t p = 0; p < rendered.size(); ++p) {
+                const bool left = rendered[p] == 0.0f;
+                expectSame(got, left ? early : full, p,
+                           std::string(left ? "left out" : "rendered") + " withdraw " +
+                               std::to_string(withdraw));
+                EXPECT_EQ(partial.frameCount(int(p % std::size_t(w)), int(p / std::size_t(w))),
+                          left ? 3.0 : 8.0);
+            }
+        }
+}
+
+// A pixel left out for a while and then rendered again (a lowered target) averages exactly
+// the frames it has: sum / count.
+TEST(RowAccumulator, APixelRenderedAgainAveragesItsOwnFrames) {
+    const int w = 9, h = 3;
+    const CellOrder order(w, 1);
+    RowAccumulator rows;
+    rows.reset(order, h, false);
+    std::vector<float> rendered(std::size_t(w) * h, 1.0f);
+    rendered[4] = 0.0f;
+    std::mt19937 rng(9);
+    std::vector<glm::vec3> filtered, unfiltered;
+    double sum = 0.0;
+    int count = 0;
+    Readout out;
+    for (int frame = 0; frame < 10; ++frame) {
+        randomImages(w, h, rng, filtered, unfiltered);
+        const bool left = frame >= 3 && frame < 6;
+        if (!left) {
+            sum += double(filtered[4].x);
+            ++count;
+        }
+        out = addFrame(rows, order, w, h, filtered, unfiltered, left ? &rendered : nullptr,
+                       lanes::bestIsa());
+    }
+    EXPECT_EQ(count, 7);
+    EXPECT_EQ(rows.frameCount(4, 0), 7.0);
+    EXPECT_EQ(out.mean[4].x, float(sum * (1.0 / 7.0)));
+    EXPECT_GT(out.error[4], 0.0f);
 }
 
 }  // namespace
