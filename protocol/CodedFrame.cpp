@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 #include "ChannelCodec.h"
@@ -321,6 +322,26 @@ void CodedFrame::scatter(const Tile& tile, const TileCodes& codes, std::string_v
     t.unfiltered = codes.sent & kUnfiltered ? codes.unfilteredScale : 1.0f;
     t.glossy = codes.sent & kGlossy ? codes.glossyScale : 1.0f;
     live_.fetch_or(codes.sent, std::memory_order_relaxed);
+}
+
+void CodedFrame::copyRegion(const CodedFrame& from, const Tile& region) {
+    if (from.width_ != width_ || from.height_ != height_ || from.n_ != n_ || from.m_ != m_ ||
+        from.tileSize_ != tileSize_)
+        throw std::logic_error("CodedFrame::copyRegion from a frame of another shape");
+    const int regionX = region.x0 / (n_ * tileSize_), regionY = region.y0 / (m_ * tileSize_);
+    for (int y = region.y0; y < std::min(height_, region.y0 + region.height); ++y)
+        for (int kx = 0; kx < n_; ++kx) {
+            const Tile cell{region.x0, region.y0, region.width, region.height, kx, 0};
+            const std::size_t run = std::size_t(order_.start(kx) + region.x0 / n_);
+            const std::size_t columns = std::size_t(std::max(0, cell.columns(n_)));
+            for (int b = 0; b < kBytePlanes; ++b)
+                std::memcpy(bytes(y, b) + run, from.bytes(y, b) + run, columns);
+        }
+    for (int ky = 0; ky < m_; ++ky)
+        for (int kx = 0; kx < n_; ++kx)
+            records_[slot(kx, ky, regionX, regionY)] =
+                from.records_[slot(kx, ky, regionX, regionY)];
+    live_.fetch_or(from.live_.load(std::memory_order_relaxed), std::memory_order_relaxed);
 }
 
 template <bool Avx2>

@@ -44,6 +44,13 @@ class CodedFrame {
     /// scattered from several threads at once.
     void scatter(const Tile& tile, const TileCodes& codes, std::string_view what = "TileResult");
 
+    /// Copies every cell of region `region` (a tile-layout region: makeTiles' rectangle of
+    /// tileSize * n by tileSize * m pixels, at any cell) from `from`, a frame of the same
+    /// shape: its bytes and its tiles' references, as if its tiles had been scattered here.
+    /// Adaptive tiles fill the regions a frame leaves out with their last rendered cells, so
+    /// that the discontinuity buffer beside them reads the same whoever rendered what.
+    void copyRegion(const CodedFrame& from, const Tile& region);
+
     /// Row y, dequantized, in order(). Planes a tile did not send are empty there (zero, depth
     /// +inf); the glossy arrays are left as they are unless live(kGlossy).
     void decodeRow(int y, FrameRow& row, lanes::Isa isa = lanes::bestIsa()) const;

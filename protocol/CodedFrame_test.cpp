@@ -306,5 +306,45 @@ TEST(CodedFrame, RefusesWhatTheMessageDecoderRefusesAndReadsTheRestTheSame) {
     EXPECT_GT(accepted, 100);
 }
 
+// Adaptive tiles fill a region a frame leaves out with the cells of the frame that last
+// rendered it: after copyRegion, every row reads as a frame whose tiles of that region came
+// from the other frame and the rest from its own, bit for bit, references included.
+TEST(CodedFrame, CopyRegionTakesTheOtherFramesCellsThere) {
+    const Shape shapes[] = {{29, 17, 3, 3, 2}, {37, 11, 4, 2, 3}, {100, 7, 2, 3, 5}};
+    std::mt19937 rng(8);
+    for (const Shape& s : shapes) {
+        const auto tiles = makeTiles(s.width, s.height, s.n, s.m, s.tileSize);
+        test::RandomTiles first, second;
+        first.extremeScales = true;
+        const auto wireA = first.encoded(tiles, s.n, s.m, rng);
+        const auto wireB = second.encoded(tiles, s.n, s.m, rng);
+        CodedFrame a, b;
+        a.reuse(s.width, s.height, s.n, s.m, s.tileSize);
+        b.reuse(s.width, s.height, s.n, s.m, s.tileSize);
+        scatterCodes(a, tiles, wireA, rng);
+        scatterCodes(b, tiles, wireB, rng);
+        // Region 1's tiles (those at tiles[0]'s neighbour) from a, the rest from b.
+        const int regionWidth = s.n * s.tileSize;
+        const Tile region{regionWidth,
+                          0,
+                          std::min(regionWidth, s.width - regionWidth),
+                          std::min(s.m * s.tileSize, s.height),
+                          0,
+                          0};
+        b.copyRegion(a, region);
+        std::vector<std::vector<std::uint8_t>> mixed;
+        for (std::size_t i = 0; i < tiles.size(); ++i)
+            mixed.push_back(tiles[i].x0 == region.x0 && tiles[i].y0 == region.y0 ? wireA[i]
+                                                                                 : wireB[i]);
+        FrameBuffer floats;
+        floats.reuse(s.width, s.height);
+        scatterFloats(floats, tiles, mixed, s);
+        expectSameRows(b, floats, s, std::to_string(s.width) + "x" + std::to_string(s.height));
+        CodedFrame other;
+        other.reuse(s.width + 1, s.height, s.n, s.m, s.tileSize);
+        EXPECT_THROW(other.copyRegion(a, region), std::logic_error);
+    }
+}
+
 }  // namespace
 }  // namespace igi::proto
