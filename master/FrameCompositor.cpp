@@ -29,6 +29,7 @@ struct Workspace {
     ShadedRow shaded;
     std::vector<std::vector<double>> variance;
     std::vector<const double*> window;  ///< the variance rows of one mean
+    std::vector<float> rendered;        ///< the row's pixels the frame renders (adaptive tiles)
 };
 
 /// The calling thread's workspace, with at least the rows asked for. It only grows: rings of
@@ -40,6 +41,7 @@ Workspace& workspace(int filterRows, int noiseRows, std::size_t varianceEntries)
     if (w.variance.size() < std::size_t(noiseRows)) w.variance.resize(std::size_t(noiseRows));
     for (auto& v : w.variance) v.resize(varianceEntries);
     if (w.window.size() < std::size_t(noiseRows)) w.window.resize(std::size_t(noiseRows));
+    w.rendered.resize(varianceEntries);
     return w;
 }
 
@@ -80,19 +82,25 @@ void FrameCompositor::forRowBlocks(F&& f) {
     });
 }
 
-const Image& FrameCompositor::composite(const proto::CodedFrame& frame) {
+const Image& FrameCompositor::composite(const proto::CodedFrame& frame,
+                                        const TileRegions* rendered) {
     if (frame.width() != width_ || frame.height() != height_ ||
         frame.order().cells() != order_.cells())
         throw std::logic_error("a coded frame of another shape than the compositor's");
-    return composite([&](int y, FrameRow& row) { frame.decodeRow(y, row); }, frame.live(kGlossy));
+    return composite([&](int y, FrameRow& row) { frame.decodeRow(y, row); }, frame.live(kGlossy),
+                     rendered);
 }
 
-const Image& FrameCompositor::composite(const FrameBuffer& frame) {
+const Image& FrameCompositor::composite(const FrameBuffer& frame, const TileRegions* rendered) {
     return composite([&](int y, FrameRow& row) { splitRow(frame, y, order_, row); },
-                     frame.live.has(kGlossy));
+                     frame.live.has(kGlossy), rendered);
 }
 
-const Image& FrameCompositor::composite(const RowSource& source, bool glossy) {
+const Image& FrameCompositor::composite(const RowSource& source, bool glossy,
+                                        const TileRegions* rendered) {
+    // Without accumulation a frame is shown as it is: adaptive tiles need the accumulation.
+    const bool partial = accumulate_ && rendered && !rendered->all();
+    if (accumulate_) accumulator_.prepareFrame(partial);
     // One sweep per block of rows: each row is filtered, added to the accumulation and, as
     // soon as the rows its mean reads are in, averaged, all while it is still in the cache.
     // A mean that reads a row of another block waits for the second sweep.
@@ -120,7 +128,12 @@ const Image& FrameCompositor::composite(const RowSource& source, bool glossy) {
                              filtered_.pixels.data() + std::size_t(y) * width_);
                 continue;
             }
-            accumulator_.addRow(y, w.shaded, w.variance[std::size_t(y) % w.variance.size()].data());
+            const std::size_t entries = accumulator_.varianceEntries();
+            if (partial)
+                rendered->rowMask(y, order_, w.rendered.data(),
+                                  entries - std::size_t(order_.width()));
+            accumulator_.addRow(y, w.shaded, w.variance[std::size_t(y) % w.variance.size()].data(),
+                                partial ? w.rendered.data() : nullptr);
             for (; next <= y; ++next) {
                 const auto [first, last] = accumulator_.meanWindow(next);
                 if (last > y + 1) break;  // reads rows not added yet

@@ -11,6 +11,7 @@
 #include "render/RenderSettings.h"
 #include "render/RowAccumulator.h"
 #include "render/Tile.h"
+#include "render/TileRegions.h"
 #include "util/ThreadPool.h"
 
 namespace igi {
@@ -26,10 +27,13 @@ class FrameCompositor {
 
     /// Filters `frame`, adds it to the accumulation (when enabled) and returns what to show:
     /// the running mean, or the frame itself without accumulation. The frame's cells must be
-    /// the settings' interleaving.
-    const Image& composite(const proto::CodedFrame& frame);
+    /// the settings' interleaving. `rendered` (null: all): the regions the frame rendered
+    /// (adaptive tiles); the frame must hold cells in the others too, which the discontinuity
+    /// buffer reads for the pixels beside them, but they are not accumulated: those pixels
+    /// keep their mean and count (RowAccumulator::prepareFrame).
+    const Image& composite(const proto::CodedFrame& frame, const TileRegions* rendered = nullptr);
     /// The same for a frame of floats (tests, tools).
-    const Image& composite(const FrameBuffer& frame);
+    const Image& composite(const FrameBuffer& frame, const TileRegions* rendered = nullptr);
 
     /// Starts a new accumulation (the view or the scene changed).
     void resetAccumulation();
@@ -38,6 +42,9 @@ class FrameCompositor {
     /// while a frame is being composited or an image read.
     void reconfigure(const RenderSettings& settings);
     int accumulatedFrames() const { return accumulator_.frames(); }
+    /// The frames in pixel (x, y)'s mean (fewer than accumulatedFrames() where adaptive tiles
+    /// left it out).
+    double pixelFrames(int x, int y) const { return accumulator_.frameCount(x, y); }
     /// What composite() last returned: the accumulated mean, or the last frame.
     const Image& shown() const { return accumulate_ ? shown_ : filtered_; }
     /// The accumulated mean's relMSE as estimated from the frames' spread, without a reference
@@ -54,7 +61,7 @@ class FrameCompositor {
   private:
     /// Fills `row` with row y of the frame being composited (in order_).
     using RowSource = std::function<void(int y, FrameRow& row)>;
-    const Image& composite(const RowSource& rows, bool glossy);
+    const Image& composite(const RowSource& rows, bool glossy, const TileRegions* rendered);
     template <typename F>
     void forRowBlocks(F&& f);
 

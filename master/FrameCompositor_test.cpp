@@ -1,5 +1,7 @@
 #include "FrameCompositor.h"
 
+#include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <random>
 
@@ -129,6 +131,91 @@ TEST(FrameCompositor, OneSweepEqualsTheSeparatePassesBitForBit) {
             }
         }
     }
+}
+
+// Adaptive tiles: from the frame that leaves regions out, their pixels keep their mean, their
+// estimate and their frame count (bit for bit where their whole neighbourhood is left out too),
+// while pixels away from them (beyond the filter's and the pooled variance's reach) are exactly
+// those of a compositor given every region. The left-out regions hold the cells of the last
+// frame that rendered them, as the master fills them.
+TEST(FrameCompositor, RegionsLeftOutKeepTheirPixelsAndCounts) {
+    const int w = 48, h = 36, n = 3, m = 3, tileSize = 4;  // regions of 12 x 12: 4 x 3
+    RenderSettings settings;
+    settings.interleaveX = n, settings.interleaveY = m, settings.tileSize = tileSize;
+    const auto tiles = makeTiles(w, h, n, m, tileSize);
+    ThreadPool pool(3);
+    FrameCompositor partial(w, h, settings, pool), full(w, h, settings, pool);
+    TileRegions regions(w, h, n, m, tileSize);
+    regions.setRendered(1, false);
+    regions.setRendered(6, false);
+    proto::CodedFrame buffer, kept;
+    std::mt19937 rng(4);
+    std::vector<glm::vec3> before;
+    std::vector<float> errorBefore;
+    for (int frame = 0; frame < 8; ++frame) {
+        proto::test::RandomTiles random;
+        const auto wire = random.encoded(tiles, n, m, rng);
+        buffer.reuse(w, h, n, m, tileSize);
+        for (std::size_t i = 0; i < tiles.size(); ++i) {
+            proto::ByteReader in(wire[i], "TileResult");
+            buffer.scatter(tiles[i], proto::readTileCodes(in));
+        }
+        full.composite(buffer);
+        const bool leftOut = frame >= 4;
+        if (frame == 3) {  // the last frame that renders them: its cells are kept
+            kept.reuse(w, h, n, m, tileSize);
+            for (int r = 0; r < regions.count(); ++r)
+                if (!regions.rendered(r)) kept.copyRegion(buffer, regions.rectangle(r));
+        }
+        if (leftOut)
+            for (int r = 0; r < regions.count(); ++r)
+                if (!regions.rendered(r)) buffer.copyRegion(kept, regions.rectangle(r));
+        const Image& shown = partial.composite(buffer, leftOut ? &regions : nullptr);
+        if (frame == 3) {
+            before = shown.pixels;
+            errorBefore = partial.pixelRelMse();
+        }
+    }
+    // The distance from pixel (x, y) to the nearest left-out pixel, in the max norm.
+    const auto distance = [&](int x, int y) {
+        int d = 1 << 20;
+        for (int qy = 0; qy < h; ++qy)
+            for (int qx = 0; qx < w; ++qx)
+                if (!regions.rendered(regions.regionAt(qx, qy)))
+                    d = std::min(d, std::max(std::abs(qx - x), std::abs(qy - y)));
+        return d;
+    };
+    int inside = 0, away = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t p = std::size_t(y) * w + x;
+            const bool left = !regions.rendered(regions.regionAt(x, y));
+            EXPECT_EQ(partial.pixelFrames(x, y), left ? 4.0 : 8.0) << x << ", " << y;
+            if (left) {
+                // Inside: its own and its neighbours' sums are those of frame 3.
+                bool deep = true;
+                for (int dy = -2; dy <= 2; ++dy)
+                    for (int dx = -2; dx <= 2; ++dx) {
+                        const int qx = std::clamp(x + dx, 0, w - 1),
+                                  qy = std::clamp(y + dy, 0, h - 1);
+                        deep = deep && !regions.rendered(regions.regionAt(qx, qy));
+                    }
+                if (!deep) continue;
+                ++inside;
+                EXPECT_EQ(std::memcmp(&partial.shown().pixels[p], &before[p], sizeof(glm::vec3)), 0)
+                    << x << ", " << y;
+                EXPECT_EQ(partial.pixelRelMse()[p], errorBefore[p]) << x << ", " << y;
+            } else if (distance(x, y) > 3) {
+                ++away;
+                EXPECT_EQ(std::memcmp(&partial.shown().pixels[p], &full.shown().pixels[p],
+                                      sizeof(glm::vec3)),
+                          0)
+                    << x << ", " << y;
+            }
+        }
+    EXPECT_GT(inside, 100);
+    EXPECT_GT(away, 500);
+    EXPECT_EQ(partial.accumulatedFrames(), 8);
 }
 
 }  // namespace

@@ -79,8 +79,11 @@ void Master::makeFrames(const RenderSettings& s) {
     framesMadeAt_ = nextFrameToOpen_;
     auto layout = makeTiles(scene_.image.width, scene_.image.height, s.interleaveX, s.interleaveY,
                             s.tileSize);
-    scheduler_ = std::make_unique<TileScheduler>(std::move(layout), s.setCount());
+    scheduler_ = std::make_unique<TileScheduler>(layout, s.setCount());
     frames_ = std::make_unique<OpenFrames>(scene_.image, s);
+    adaptive_ = std::make_unique<AdaptiveTiles>(std::move(layout), scene_.image.width,
+                                                scene_.image.height, s.interleaveX, s.interleaveY,
+                                                s.tileSize, frames_->capacity());
 }
 
 bool Master::framesFollowSettings() {
@@ -149,8 +152,18 @@ void Master::openFramesAsNeeded() {
             for (auto& [id, c] : roster_->clients())
                 if (c.sceneSent) c.connection->send(update, f, start.epoch);
         }
-        scheduler_->openFrame(f);
-        frames_->open(f, start.epoch);
+        // Adaptive tiles: the regions decided for this frame from the image composited as
+        // it became openable, `capacity` frames before it (AdaptiveTiles), or all of them.
+        TileRegions regions = adaptive_->regionsFor(f, start.epoch);
+        if (regions.all()) {
+            scheduler_->openFrame(f);
+        } else {
+            const std::vector<bool> leftOut = adaptive_->tilesLeftOut(regions);
+            scheduler_->openFrame(f, &leftOut);
+            stats_.frame(f).tilesLeftOut =
+                std::uint32_t(std::count(leftOut.begin(), leftOut.end(), true));
+        }
+        frames_->open(f, start.epoch).rendered = std::move(regions);
     }
 }
 
@@ -245,10 +258,14 @@ void Master::finishReadyFrames() {
     // Accumulation restarts when the scene changed, and goes on while it does not.
     const bool restart = compositedEpoch_ != std::int64_t(record->epoch);
     compositedEpoch_ = record->epoch;
-    pool_.submit([this, f, record, restart] {
+    // What the next frame renders, if it renders this epoch: the cells of the regions it
+    // leaves out are kept from this one.
+    TileRegions next = adaptive_->regionsFor(f + 1, record->epoch);
+    pool_.submit([this, f, record, restart, next = std::move(next)] {
         const auto start = Clock::now();
         if (restart) compositor_->resetAccumulation();
-        compositor_->composite(record->buffer);
+        adaptive_->prepareCells(record->buffer, record->rendered, next);
+        compositor_->composite(record->buffer, &record->rendered);
         compositedUpTo_.store(f + 1);
         const double seconds = secondsSince(start);
         boost::asio::post(io_, [this, f, seconds] { onComposited(f, seconds); });
@@ -271,6 +288,12 @@ void Master::onComposited(std::uint32_t f, double seconds) {
     fs.decodeSeconds = frames_->at(f).decodeSeconds;
     fs.seconds = secondsSince(frames_->at(f).opened);
     noteShown(f);
+    // The regions of frame f + capacity, which may open now that this one is in
+    // (AdaptiveTiles).
+    if (options_.adaptiveTiles && frameSettings_.accumulate)
+        adaptive_->decide(f, frames_->at(f).epoch, compositor_->accumulatedFrames(),
+                          options_.targetError, *compositor_);
+    adaptive_->forgetBefore(f + 1);
     stats_.noteFrameDone(secondsSince(created_));
     // On a terminal the progress line says it; the frame lines are for logs and the curious.
     // A live session there has no progress line: a line a second, saying what it left out.

@@ -11,6 +11,7 @@
 
 #include <boost/asio/signal_set.hpp>
 
+#include "AdaptiveTiles.h"
 #include "ClientRoster.h"
 #include "CodedFrame.h"
 #include "ControlServer.h"
@@ -120,6 +121,7 @@ class Master : private ClientRoster::Events, private SessionControl::Frames {
     std::uint32_t framesMadeAt_ = 0;     ///< the first frame made with frameSettings_
     LocalClients localClients_;
     std::unique_ptr<OpenFrames> frames_;
+    std::unique_ptr<AdaptiveTiles> adaptive_;  ///< which tile regions each frame renders
     bool compositing_ = false;
     /// Frames the pool has composited into the image (written by the pool's thread): one may
     /// finish after the session ended, when its io handler no longer runs.

@@ -17,6 +17,9 @@ struct MasterOptions {
     /// after `frames`, whichever comes first.
     double targetError = 0;
     double timeLimitSeconds = 0;
+    /// With a target error: tile regions whose estimate is at or below it are not rendered
+    /// again until something changes (AdaptiveTiles); --no-adaptive-tiles renders every tile.
+    bool adaptiveTiles = true;
     /// The number of the session's first frame: a session started at frame F renders frames
     /// F, F + 1, ... as a session that reached F would (their random numbers depend on the
     /// frame's number). What a settings change at frame F is compared with (docs/ANIMATION.md).

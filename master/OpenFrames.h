@@ -9,6 +9,7 @@
 #include "CodedFrame.h"
 #include "Messages.h"
 #include "render/Tile.h"
+#include "render/TileRegions.h"
 #include "scene/Scene.h"
 
 namespace igi {
@@ -27,6 +28,9 @@ class OpenFrames {
         std::uint32_t accumulation = 0;
         int decoding = 0;          ///< tile results being decoded on the pool
         double decodeSeconds = 0;  ///< pool time spent decoding and scattering its tiles
+        /// The tile regions it renders (AdaptiveTiles; every one unless a target leaves some
+        /// out).
+        TileRegions rendered;
     };
 
     /// For images of `image`'s size laid out in tiles by `render`.

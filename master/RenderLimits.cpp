@@ -71,6 +71,7 @@ nlohmann::json RenderLimits::json(double fps) const {
     nlohmann::json j = shown_.json(fps);
     j["target_error"] =
         options_.targetError > 0 ? nlohmann::json(options_.targetError) : nlohmann::json();
+    j["adaptive_tiles"] = options_.adaptiveTiles;
     j["time_limit_s"] = options_.timeLimitSeconds > 0 ? nlohmann::json(options_.timeLimitSeconds)
                                                       : nlohmann::json();
     j["render_seconds"] = renderSeconds();

@@ -27,6 +27,7 @@ nlohmann::json frameJson(const FrameStats& f) {
         {"pixels", f.pixels},
         {"tiles", f.tiles},
         {"duplicate_tiles", f.duplicateTiles},
+        {"tiles_left_out", f.tilesLeftOut},
         {"sets_built", f.setsBuilt},
         {"vpls", f.vplsPerSet},
         {"caustic_photons", f.photonsPerSet}};
@@ -176,7 +177,9 @@ std::string Statistics::summaryLine(std::uint32_t index) const {
                f.index, f.seconds * 1e3, mrays,
                f.pixels ? double(f.shadowRays) / double(f.pixels) : 0.0, bpp, f.tiles,
                f.duplicateTiles, f.setsBuilt, f.decodeSeconds * 1e3, f.compositeSeconds * 1e3) +
-           (f.estimatedRelMse ? fmt::format(", est. relMSE {:.3g}", *f.estimatedRelMse) : "");
+           (f.estimatedRelMse ? fmt::format(", est. relMSE {:.3g}", *f.estimatedRelMse) : "") +
+           (f.tilesLeftOut ? fmt::format(", {} tiles left out (under the target)", f.tilesLeftOut)
+                           : "");
 }
 
 void Statistics::writeJson(const std::filesystem::path& path, const nlohmann::json& session,

@@ -32,6 +32,9 @@ struct FrameStats {
     std::uint64_t pixels = 0;
     std::uint32_t tiles = 0;
     std::uint32_t duplicateTiles = 0;  ///< results dropped because another copy came first
+    /// Tiles not handed out: their regions' estimated error was at or below the target
+    /// (AdaptiveTiles).
+    std::uint32_t tilesLeftOut = 0;
     std::uint32_t setsBuilt = 0;
     double vplsPerSet = 0;     ///< mean over the frame's tiles
     double photonsPerSet = 0;  ///< mean over the frame's tiles

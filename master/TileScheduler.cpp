@@ -23,15 +23,23 @@ TileScheduler::TileScheduler(std::vector<Tile> layout, int setCount)
     setCount_ = std::max(setCount_, int(setOf.size()));
 }
 
-void TileScheduler::openFrame(std::uint32_t frame) {
+void TileScheduler::openFrame(std::uint32_t frame, const std::vector<bool>* leftOut) {
     if (!frames_.empty() && frame <= frames_.rbegin()->first)
         throw std::logic_error("frames must be opened in increasing order");
+    if (leftOut && leftOut->size() != layout_.size())
+        throw std::logic_error("openFrame: tiles left out of another layout");
     FrameState f;
     f.tiles.resize(layout_.size());
     f.pendingBySet.resize(std::size_t(setCount_));
-    for (std::uint32_t i = 0; i < layout_.size(); ++i)
+    for (std::uint32_t i = 0; i < layout_.size(); ++i) {
+        if (leftOut && (*leftOut)[i]) {
+            f.tiles[i].state = State::Done;  // never handed out: the frame is done without it
+            ++f.done;
+            continue;
+        }
         f.pendingBySet[std::size_t(setQueue_[i])].push_back(i);
-    f.pending = int(layout_.size());
+        ++f.pending;
+    }
     frames_.emplace(frame, std::move(f));
 }
 

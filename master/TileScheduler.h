@@ -35,8 +35,10 @@ class TileScheduler {
     /// `layout` is every frame's tiles; `setCount` the number of interleaving sets n * m.
     TileScheduler(std::vector<Tile> layout, int setCount);
 
-    /// Opens a frame: all its tiles become pending. Frames must be opened in increasing order.
-    void openFrame(std::uint32_t frame);
+    /// Opens a frame: all its tiles become pending, but those `leftOut` marks (adaptive tiles:
+    /// one flag per tile of the layout), which count as done and are never handed out. Frames
+    /// must be opened in increasing order.
+    void openFrame(std::uint32_t frame, const std::vector<bool>* leftOut = nullptr);
     /// The next tile for `client`, or nothing. Only frames opened so far are considered. A copy
     /// of a tile held elsewhere is given only once it is late: out for at least
     /// `minDuplicateAge` seconds and three times its holder's usual latency (a holder not yet

@@ -163,5 +163,29 @@ TEST(TileScheduler, AReopenedTileIsHandedOutAgainAndTheFrameWaitsForIt) {
     EXPECT_TRUE(s.frameDone(0));
 }
 
+// Adaptive tiles: the tiles a frame leaves out are never handed out, not even as late copies,
+// and the frame completes with the others; a result for one is dropped.
+TEST(TileScheduler, TilesLeftOutAreNeverHandedOut) {
+    TileScheduler s(layout(), 9);
+    std::vector<bool> leftOut(layout().size(), false);
+    for (std::size_t i = 0; i < leftOut.size(); i += 3) leftOut[i] = true;
+    s.openFrame(0, &leftOut);
+    std::set<std::uint32_t> given;
+    while (auto a = s.next(1)) {
+        if (a->duplicate) break;
+        EXPECT_FALSE(leftOut[a->tile]) << a->tile;
+        EXPECT_TRUE(given.insert(a->tile).second);
+    }
+    EXPECT_EQ(given.size(), 24u);
+    EXPECT_TRUE(s.frameFullyAssigned(0));
+    for (std::uint32_t t = 0; t < 36; ++t)
+        if (leftOut[t]) EXPECT_FALSE(s.complete(1, 0, t)) << "tile " << t << " was never given";
+    EXPECT_FALSE(s.frameDone(0));
+    for (auto t : given) EXPECT_TRUE(s.complete(1, 0, t));
+    EXPECT_TRUE(s.frameDone(0));
+    std::vector<bool> wrong(5, true);
+    EXPECT_THROW(s.openFrame(1, &wrong), std::logic_error);
+}
+
 }  // namespace
 }  // namespace igi

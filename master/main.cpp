@@ -116,6 +116,10 @@ int main(int argc, char** argv) {
                    "stop once the image's estimated relMSE (docs/ERROR_ESTIMATE.md) is at or "
                    "below this, e.g. 0.001")
         ->check(positiveNumber());
+    app.add_flag("!--no-adaptive-tiles", o.adaptiveTiles,
+                 "with --target-error, render every tile every frame (by default, tile regions "
+                 "whose estimated error is at or below the target are not rendered again until "
+                 "something changes)");
     app.add_option("--time-limit", o.timeLimitSeconds,
                    "stop after this many seconds of rendering (with --frames and --target-error: "
                    "whichever comes first)")
