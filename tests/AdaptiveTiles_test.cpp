@@ -17,11 +17,6 @@ namespace {
 using namespace igi::testing;
 namespace fs = std::filesystem;
 
-nlohmann::json readJson(const fs::path& path) {
-    std::ifstream in(path);
-    return nlohmann::json::parse(in, nullptr, false);
-}
-
 std::string exact(double v) {
     std::ostringstream text;
     text << std::setprecision(17) << v;

@@ -51,6 +51,12 @@ inline std::vector<std::string> sceneArgs(int frames, const std::string& listen 
             "--log-level", logLevel};
 }
 
+/// A JSON file (statistics, a status), or a discarded value if it does not parse.
+inline nlohmann::json readJson(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in, nullptr, false);
+}
+
 inline bool contains(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
 }

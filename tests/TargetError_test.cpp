@@ -22,11 +22,6 @@ namespace {
 using namespace igi::testing;
 namespace fs = std::filesystem;
 
-nlohmann::json readJson(const fs::path& path) {
-    std::ifstream in(path);
-    return nlohmann::json::parse(in, nullptr, false);
-}
-
 // Each shown frame's estimate, by its accumulated frame count (null before two frames).
 std::vector<nlohmann::json> estimates(const nlohmann::json& stats) {
     std::vector<nlohmann::json> e;

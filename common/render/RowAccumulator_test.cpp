@@ -108,15 +108,22 @@ TEST(RowAccumulator, EqualsAccumulatorBitForBit) {
                     }
 }
 
-/// Adds one frame of `filtered` and `unfiltered` (image order, w x h) to `rows` and returns
-/// the mean over the image of the error meanRow estimates after it.
-double addAndEstimate(RowAccumulator& rows, const CellOrder& order, int w, int h,
-                      const std::vector<glm::vec3>& filtered,
-                      const std::vector<glm::vec3>& unfiltered) {
+/// What the compositor does with one frame, image order in and out: adds it (`rendered`, image
+/// order, 1 or 0 per pixel: null for every pixel), ends it, and reads every row's mean and
+/// estimated error after it.
+struct Readout {
+    std::vector<glm::vec3> mean;
+    std::vector<float> error;
+};
+Readout addFrame(RowAccumulator& rows, const CellOrder& order, int w, int h,
+                 const std::vector<glm::vec3>& filtered, const std::vector<glm::vec3>& unfiltered,
+                 const std::vector<float>* rendered, lanes::Isa isa) {
     std::vector<std::vector<double>> variance(std::size_t(h),
                                               std::vector<double>(rows.varianceEntries()));
     ShadedRow shaded;
     shaded.resize(w);
+    std::vector<float> mask(rows.varianceEntries(), 1.0f);
+    rows.prepareFrame(rendered != nullptr);
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             const std::size_t p = std::size_t(y) * w + x;
@@ -124,20 +131,31 @@ double addAndEstimate(RowAccumulator& rows, const CellOrder& order, int w, int h
                 shaded[ShadedRow::kFr + c][order.position(x)] = filtered[p][c];
                 shaded[ShadedRow::kUr + c][order.position(x)] = unfiltered[p][c];
             }
+            if (rendered) mask[std::size_t(order.position(x))] = (*rendered)[p];
         }
-        rows.addRow(y, shaded, variance[std::size_t(y)].data());
+        rows.addRow(y, shaded, variance[std::size_t(y)].data(), rendered ? mask.data() : nullptr,
+                    isa);
     }
     rows.endFrame();
-    std::vector<glm::vec3> mean(static_cast<std::size_t>(w));
-    std::vector<float> error(static_cast<std::size_t>(w));
-    double sum = 0;
+    Readout out{std::vector<glm::vec3>(std::size_t(w) * h), std::vector<float>(std::size_t(w) * h)};
     for (int y = 0; y < h; ++y) {
         const auto [first, last] = rows.meanWindow(y);
         std::vector<const double*> window;
         for (int k = first; k < last; ++k) window.push_back(variance[std::size_t(k)].data());
-        rows.meanRow(y, rows.frames(), window.data(), mean.data(), error.data());
-        for (const float e : error) sum += e;
+        rows.meanRow(y, rows.frames(), window.data(), out.mean.data() + std::size_t(y) * w,
+                     out.error.data() + std::size_t(y) * w, isa);
     }
+    return out;
+}
+
+/// Adds one frame of `filtered` and `unfiltered` (image order, w x h) to `rows` and returns
+/// the mean over the image of the error meanRow estimates after it.
+double addAndEstimate(RowAccumulator& rows, const CellOrder& order, int w, int h,
+                      const std::vector<glm::vec3>& filtered,
+                      const std::vector<glm::vec3>& unfiltered) {
+    const Readout r = addFrame(rows, order, w, h, filtered, unfiltered, nullptr, lanes::bestIsa());
+    double sum = 0;
+    for (const float e : r.error) sum += e;
     return sum / (double(w) * h);
 }
 
@@ -216,46 +234,6 @@ TEST(RowAccumulator, SeesTheFirstFramesBias) {
             (double(bias) / n) * (bias / n) * (other / own) / (shown * shown + 0.01);
         EXPECT_NEAR(estimate, expected, 1e-6 * expected) << n << " frames";
     }
-}
-
-/// What the compositor does with one frame, image order in and out: adds it (`rendered`, image
-/// order, 1 or 0 per pixel: null for every pixel), ends it, and reads every row's mean and
-/// estimated error after it.
-struct Readout {
-    std::vector<glm::vec3> mean;
-    std::vector<float> error;
-};
-Readout addFrame(RowAccumulator& rows, const CellOrder& order, int w, int h,
-                 const std::vector<glm::vec3>& filtered, const std::vector<glm::vec3>& unfiltered,
-                 const std::vector<float>* rendered, lanes::Isa isa) {
-    std::vector<std::vector<double>> variance(std::size_t(h),
-                                              std::vector<double>(rows.varianceEntries()));
-    ShadedRow shaded;
-    shaded.resize(w);
-    std::vector<float> mask(rows.varianceEntries(), 1.0f);
-    rows.prepareFrame(rendered != nullptr);
-    for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) {
-            const std::size_t p = std::size_t(y) * w + x;
-            for (int c = 0; c < 3; ++c) {
-                shaded[ShadedRow::kFr + c][order.position(x)] = filtered[p][c];
-                shaded[ShadedRow::kUr + c][order.position(x)] = unfiltered[p][c];
-            }
-            if (rendered) mask[std::size_t(order.position(x))] = (*rendered)[p];
-        }
-        rows.addRow(y, shaded, variance[std::size_t(y)].data(), rendered ? mask.data() : nullptr,
-                    isa);
-    }
-    rows.endFrame();
-    Readout out{std::vector<glm::vec3>(std::size_t(w) * h), std::vector<float>(std::size_t(w) * h)};
-    for (int y = 0; y < h; ++y) {
-        const auto [first, last] = rows.meanWindow(y);
-        std::vector<const double*> window;
-        for (int k = first; k < last; ++k) window.push_back(variance[std::size_t(k)].data());
-        rows.meanRow(y, rows.frames(), window.data(), out.mean.data() + std::size_t(y) * w,
-                     out.error.data() + std::size_t(y) * w, isa);
-    }
-    return out;
 }
 
 void expectSame(const Readout& got, const Readout& expected, std::size_t p,
