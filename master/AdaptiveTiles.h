@@ -29,7 +29,7 @@ class FrameCompositor;
 class AdaptiveTiles {
   public:
     /// Fewer frames than this give an estimate too noisy to stop a region on (ERROR_ESTIMATE.md:
-    /// the estimate is within 1.5x of the truth from 16 frames on; at 4 to 8 it can be 10x low).
+    /// at 4 to 16 frames it is 0.4x to 0.7x the true error on the interiors).
     static constexpr int kMinFrames = 16;
 
     /// For frames of `layout` (makeTiles(width, height, n, m, tileSize)), `lag` frames open at
