@@ -18,9 +18,9 @@ class FrameCompositor;
 ///
 /// The image must not depend on which client rendered what, nor on timing, so each decision
 /// rests only on what the master composited: the regions of frame g are chosen from the image
-/// composited after frame g - lag, lag being the number of frames open at once, because frame
-/// g opens exactly when that frame is composited (Master::openFramesAsNeeded), never earlier
-/// and never later than its tiles are handed out.
+/// composited after frame g - lag, lag being the number of frames open at once. Frame g can
+/// open only once that frame is composited (Master::openFramesAsNeeded), so its decision is
+/// always made before it opens, whatever the clients' pace.
 ///
 /// The regions a frame leaves out still need cells: the discontinuity buffer of the pixels
 /// beside them reads them. They are filled with the cells of the frame that rendered them last
@@ -48,7 +48,6 @@ class AdaptiveTiles {
     TileRegions regionsFor(std::uint32_t frame, std::uint32_t epoch) const;
     /// Per tile of the layout: whether `regions` leaves it out.
     std::vector<bool> tilesLeftOut(const TileRegions& regions) const;
-    int tileCount() const { return int(layout_.size()); }
 
     /// Before frame `frame` (rendering `regions`, followed by a frame rendering `next`) is
     /// composited: fills the regions it leaves out with their last rendered cells, and keeps

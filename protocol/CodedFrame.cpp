@@ -337,11 +337,15 @@ void CodedFrame::copyRegion(const CodedFrame& from, const Tile& region) {
             for (int b = 0; b < kBytePlanes; ++b)
                 std::memcpy(bytes(y, b) + run, from.bytes(y, b) + run, columns);
         }
+    // The planes the copied tiles sent are live here too, as if they had been scattered here.
+    std::uint32_t sent = 0;
     for (int ky = 0; ky < m_; ++ky)
-        for (int kx = 0; kx < n_; ++kx)
-            records_[slot(kx, ky, regionX, regionY)] =
-                from.records_[slot(kx, ky, regionX, regionY)];
-    live_.fetch_or(from.live_.load(std::memory_order_relaxed), std::memory_order_relaxed);
+        for (int kx = 0; kx < n_; ++kx) {
+            const TileRecord& record = from.records_[slot(kx, ky, regionX, regionY)];
+            records_[slot(kx, ky, regionX, regionY)] = record;
+            sent |= record.sent;
+        }
+    live_.fetch_or(sent, std::memory_order_relaxed);
 }
 
 template <bool Avx2>
