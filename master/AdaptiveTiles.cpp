@@ -1,6 +1,6 @@
 #include "AdaptiveTiles.h"
 
-#include "FrameCompositor.h"
+#include <stdexcept>
 
 namespace igi {
 
@@ -16,11 +16,13 @@ AdaptiveTiles::AdaptiveTiles(std::vector<Tile> layout, int width, int height, in
       tileSize_(tileSize) {}
 
 void AdaptiveTiles::decide(std::uint32_t composited, std::uint32_t epoch, int accumulated,
-                           double target, const FrameCompositor& compositor) {
+                           double target, const std::vector<double>& regionErrors) {
     if (target <= 0 || accumulated < kMinFrames) return;  // every region, by default
+    if (regionErrors.size() != std::size_t(all_.count()))
+        throw std::logic_error("AdaptiveTiles::decide: estimates of another layout's regions");
     Decision d{epoch, all_};
     for (int r = 0; r < d.regions.count(); ++r)
-        d.regions.setRendered(r, compositor.estimatedRelMse(all_.rectangle(r)) > target);
+        d.regions.setRendered(r, regionErrors[std::size_t(r)] > target);
     decisions_[composited + lag_] = std::move(d);
 }
 

@@ -10,8 +10,6 @@
 
 namespace igi {
 
-class FrameCompositor;
-
 /// Adaptive tiles (docs/ERROR_ESTIMATE.md): with a target error, the tile regions whose
 /// estimated error is at or below it are not rendered again until something changes (a new
 /// epoch, new settings, a lower target); the frames go to the regions that need them.
@@ -37,11 +35,14 @@ class AdaptiveTiles {
     AdaptiveTiles(std::vector<Tile> layout, int width, int height, int n, int m, int tileSize,
                   std::uint32_t lag);
 
+    /// Every region of the layout, rendered.
+    const TileRegions& regions() const { return all_; }
     /// Frame `composited` of epoch `epoch` was composited into an accumulation of
-    /// `accumulated` frames: decides the regions of frame composited + lag, each rendered while
-    /// its estimated error is above `target` (0: no target, every region).
+    /// `accumulated` frames whose regions' estimates are `regionErrors` (ShownError, in
+    /// regions()' order): decides the regions of frame composited + lag, each rendered while its
+    /// estimate is above `target` (0: no target, every region).
     void decide(std::uint32_t composited, std::uint32_t epoch, int accumulated, double target,
-                const FrameCompositor& compositor);
+                const std::vector<double>& regionErrors);
     /// The regions frame `frame` of `epoch` renders: those decided for it if it renders the
     /// epoch they were decided in, else every region (a new epoch starts its accumulation
     /// afresh). Never none: a frame with nothing to render would never finish.

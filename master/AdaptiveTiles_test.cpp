@@ -45,12 +45,16 @@ struct Fixture {
             compositor.composite(frame);
         }
     }
-    /// The regions' estimates, sorted.
-    std::vector<double> estimates() const {
-        const TileRegions all(kW, kH, kN, kM, kTileSize);
+    /// Each region's estimate, in the regions' order (what ShownError hands the decision).
+    std::vector<double> regionErrors() const {
         std::vector<double> e;
-        for (int r = 0; r < all.count(); ++r)
-            e.push_back(compositor.estimatedRelMse(all.rectangle(r)));
+        for (int r = 0; r < adaptive.regions().count(); ++r)
+            e.push_back(compositor.estimatedRelMse(adaptive.regions().rectangle(r)));
+        return e;
+    }
+    /// The same, sorted.
+    std::vector<double> estimates() const {
+        std::vector<double> e = regionErrors();
         std::sort(e.begin(), e.end());
         return e;
     }
@@ -62,15 +66,17 @@ TEST(AdaptiveTiles, RegionsAboveTheTargetAreRenderedLagFramesLater) {
     Fixture x;
     x.accumulate(AdaptiveTiles::kMinFrames - 1);
     const double some = x.estimates()[6];
-    x.adaptive.decide(20, 1, AdaptiveTiles::kMinFrames - 1, some, x.compositor);
+    x.adaptive.decide(20, 1, AdaptiveTiles::kMinFrames - 1, some, x.regionErrors());
     EXPECT_TRUE(x.adaptive.regionsFor(23, 1).all()) << "too few frames to judge a region";
     x.accumulate(1);
-    x.adaptive.decide(20, 1, AdaptiveTiles::kMinFrames, 0.0, x.compositor);
+    x.adaptive.decide(20, 1, AdaptiveTiles::kMinFrames, 0.0, x.regionErrors());
     EXPECT_TRUE(x.adaptive.regionsFor(23, 1).all()) << "no target";
+    EXPECT_THROW(x.adaptive.decide(20, 1, AdaptiveTiles::kMinFrames, 1.0, {0.5, 0.5}),
+                 std::logic_error);
 
     const auto e = x.estimates();
     const double target = (e[5] + e[6]) / 2;  // half the regions are at or below it
-    x.adaptive.decide(20, 1, AdaptiveTiles::kMinFrames, target, x.compositor);
+    x.adaptive.decide(20, 1, AdaptiveTiles::kMinFrames, target, x.regionErrors());
     const TileRegions regions = x.adaptive.regionsFor(23, 1);
     EXPECT_EQ(regions.renderedCount(), 6);
     for (int r = 0; r < regions.count(); ++r)
@@ -85,7 +91,7 @@ TEST(AdaptiveTiles, RegionsAboveTheTargetAreRenderedLagFramesLater) {
         EXPECT_EQ(leftOut[i], !regions.rendered(regions.regionOf(x.tiles[i])));
 
     // A target every region meets would leave nothing to render: such a frame renders all.
-    x.adaptive.decide(21, 1, AdaptiveTiles::kMinFrames, e.back() * 2, x.compositor);
+    x.adaptive.decide(21, 1, AdaptiveTiles::kMinFrames, e.back() * 2, x.regionErrors());
     EXPECT_TRUE(x.adaptive.regionsFor(24, 1).all());
     x.adaptive.forgetBefore(24);
     EXPECT_TRUE(x.adaptive.regionsFor(23, 1).all()) << "forgotten";

@@ -277,7 +277,7 @@ void Master::noteShown(std::uint32_t f) {
     fs.epoch = frames_->at(f).epoch;
     fs.accumulated = std::uint32_t(compositor_->accumulatedFrames());
     fs.shown = true;
-    limits_.shown().shown(int(fs.accumulated), *compositor_, scheduler_->layout(),
+    limits_.shown().shown(int(fs.accumulated), *compositor_, adaptive_->regions(),
                           stats_.recentFps(), fs);
 }
 
@@ -292,7 +292,7 @@ void Master::onComposited(std::uint32_t f, double seconds) {
     // (AdaptiveTiles).
     if (options_.adaptiveTiles && frameSettings_.accumulate)
         adaptive_->decide(f, frames_->at(f).epoch, compositor_->accumulatedFrames(),
-                          options_.targetError, *compositor_);
+                          options_.targetError, limits_.shown().regionErrors());
     adaptive_->forgetBefore(f + 1);
     stats_.noteFrameDone(secondsSince(created_));
     // On a terminal the progress line says it; the frame lines are for logs and the curious.

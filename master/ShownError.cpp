@@ -8,22 +8,22 @@
 namespace igi {
 
 void ShownError::shown(int accumulated, const FrameCompositor& compositor,
-                       const std::vector<Tile>& layout, double fps, FrameStats& stats) {
+                       const TileRegions& regions, double fps, FrameStats& stats) {
     if (accumulated <= 1) forecast_.reset();  // a new accumulation
     accumulated_ = accumulated;
     image_ = worstTile_ = 0;
-    tilesAbove_ = regions_ = 0;
+    tilesAbove_ = 0;
+    regionErrors_.clear();
     if (accumulated < 2) return;  // one frame has no spread
     image_ = compositor.estimatedRelMse();
     stats.estimatedRelMse = image_;
     // Per tile region (the cells of one region share its pixels): the worst, and how many are
     // still above the target.
-    for (const Tile& t : layout) {
-        if (t.kx != 0 || t.ky != 0) continue;
-        const double e = compositor.estimatedRelMse(t);
+    for (int r = 0; r < regions.count(); ++r) {
+        const double e = compositor.estimatedRelMse(regions.rectangle(r));
         worstTile_ = std::max(worstTile_, e);
         tilesAbove_ += target_ > 0 && e > target_;
-        ++regions_;
+        regionErrors_.push_back(e);
     }
     forecast_.add(accumulated, image_);
     if (target_ > 0) {
@@ -49,7 +49,7 @@ nlohmann::json ShownError::json(double fps) const {
         {"estimated_rel_mse", accumulated_ >= 2 ? nlohmann::json(image_) : nlohmann::json()}};
     if (accumulated_ >= 2) {
         j["worst_tile_rel_mse"] = worstTile_;
-        if (target_ > 0) j["tiles_above_target"] = {tilesAbove_, regions_};
+        if (target_ > 0) j["tiles_above_target"] = {tilesAbove_, int(regionErrors_.size())};
     }
     if (target_ > 0) {
         j["predicted_frames_to_target"] = orNull(forecast_.framesTo(target_));

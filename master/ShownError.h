@@ -8,7 +8,7 @@
 #include "ErrorForecast.h"
 #include "FrameCompositor.h"
 #include "Statistics.h"
-#include "render/Tile.h"
+#include "render/TileRegions.h"
 
 namespace igi {
 
@@ -24,9 +24,12 @@ class ShownError {
     void setTarget(double targetError) { target_ = targetError; }
 
     /// The image of `accumulated` frames was shown: takes the compositor's estimate for the
-    /// image and per tile region of `layout`, and writes it and the forecast into `stats`.
-    void shown(int accumulated, const FrameCompositor& compositor, const std::vector<Tile>& layout,
+    /// image and per tile region of `regions`, and writes it and the forecast into `stats`.
+    void shown(int accumulated, const FrameCompositor& compositor, const TileRegions& regions,
                double fps, FrameStats& stats);
+    /// The estimate of each region (TileRegions' order) of the image shown last; empty before
+    /// two frames. What adaptive tiles decide on.
+    const std::vector<double>& regionErrors() const { return regionErrors_; }
 
     /// Why the target is met ("estimated relMSE ... <= --target-error ..."), or empty.
     std::string targetMet() const;
@@ -43,7 +46,7 @@ class ShownError {
     double image_ = 0;
     double worstTile_ = 0;  ///< the largest over the tile regions
     int tilesAbove_ = 0;    ///< regions above the target
-    int regions_ = 0;
+    std::vector<double> regionErrors_;
 };
 
 }  // namespace igi
