@@ -265,6 +265,9 @@ int main(int argc, char** argv) {
         {"--caustic-radius", "caustic_radius", false,
          "photon gathering radius, fraction of the scene diagonal"},
         {"--max-eye-depth", "max_eye_depth", true, "specular bounces followed by eye paths"},
+        {"--light-edge-rays", "light_edge_rays", true,
+         "eye rays per pixel and frame that gather the light seen directly where a light's "
+         "outline crosses the pixel (0: off; docs/ACCURACY.md)"},
         {"--filter-depth-threshold", "filter_depth_threshold", false,
          "relative depth difference that splits"},
         {"--filter-normal-threshold", "filter_normal_threshold", false,

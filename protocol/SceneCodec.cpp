@@ -101,6 +101,7 @@ void writeRenderSettings(ByteWriter& out, const RenderSettings& s) {
     out.boolean(s.photonmapScreenCaustics);
     out.u8(static_cast<std::uint8_t>(s.vplSampling));
     out.i32(s.vplPool);
+    out.i32(s.lightEdgeRays);
 }
 
 RenderSettings readRenderSettings(ByteReader& in) {
@@ -169,6 +170,7 @@ RenderSettings readRenderSettings(ByteReader& in) {
         in.fail("unknown VPL sampling " + std::to_string(vplSampling));
     s.vplSampling = static_cast<VplSampling>(vplSampling);
     s.vplPool = readInt(in, "vplPool", 0, 100000);
+    s.lightEdgeRays = readInt(in, "lightEdgeRays", 0, 1024);
     return s;
 }
 

@@ -32,7 +32,8 @@ IgiIntegrator::IgiIntegrator(const TraceableScene& scene, const Lights& lights,
       lights_(lights),
       settings_(settings),
       camera_(camera),
-      shader_(scene, lights, settings) {}
+      shader_(scene, lights, settings),
+      lightEdges_(settings.lightEdgeRays > 0 ? LightEdges(lights, camera) : LightEdges()) {}
 
 /// One pixel's eye path through the phases of shade(): its numbers, the eye ray's hit, its end
 /// points and what each queued.
@@ -42,6 +43,7 @@ struct IgiIntegrator::PixelPath {
     glm::vec3 direction{0.0f};
     SurfacePoint hit;
     bool found = false;
+    bool lightFromEdgeRays = false;   ///< the light seen directly comes from gatherLightAtEdges
     std::optional<ChainEnd> ends[3];  ///< the non-delta part, then the mirror and glass paths
     EndPointShader::Pending pending[3];
     int primary = -1;  ///< the end point the master filters
@@ -83,6 +85,7 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
         p.found = false;
         p.primary = -1;
         p.nextNumber = 2;
+        p.lightFromEdgeRays = false;
         p.sampler = PixelSampler(settings_.seed, SampleStream::EyePath, pixels[i].index, frame);
         px[std::size_t(i)] = float(pixels[i].x) + p.sampler.get(0);
         py[std::size_t(i)] = float(pixels[i].y) + p.sampler.get(1);
@@ -91,6 +94,8 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
     camera_.directions(px.data(), py.data(), count, directions.data());
     for (int i = 0; i < count; ++i) paths[std::size_t(i)].direction = directions[std::size_t(i)];
     traceEyeRays(paths.data(), count, counters);
+    if (!lightEdges_.empty())
+        gatherLightAtEdges(pixels, count, frame, paths.data(), results, counters);
     // The rays that leave the first hits along mirror and glass lobes go in packets too; the
     // rest of each chain follows one ray at a time (its numbers come from the pixel's stream,
     // in order).
@@ -98,10 +103,11 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
     continuations.clear();
     const bool sky = scene_.hasSky();
     for (int i = 0; i < count; ++i) {
-        if (paths[std::size_t(i)].found)
+        const PixelPath& p = paths[std::size_t(i)];
+        if (p.found)
             splitAtFirstHit(paths[std::size_t(i)], i, results[i], continuations, counters);
-        else if (sky)  // the camera sees the sky, unfiltered
-            results[i].unfiltered += scene_.skyRadiance(paths[std::size_t(i)].direction);
+        else if (sky && !p.lightFromEdgeRays)  // the camera sees the sky, unfiltered
+            results[i].unfiltered += scene_.skyRadiance(p.direction);
     }
     traceContinuations(continuations, counters);
     queue.clear();
@@ -119,6 +125,59 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
     for (int i = 0; i < count; ++i)
         if (paths[std::size_t(i)].primary >= 0)
             shadeEnds(paths[std::size_t(i)], set, queue, results[i], counters);
+}
+
+glm::vec3 IgiIntegrator::seenDirectly(bool found, const SurfacePoint& hit,
+                                      glm::vec3 direction) const {
+    if (found) return emittedToward(hit, -direction);
+    return scene_.hasSky() ? scene_.skyRadiance(direction) : glm::vec3(0.0f);
+}
+
+void IgiIntegrator::gatherLightAtEdges(const Pixel* pixels, int count, std::uint32_t frame,
+                                       PixelPath* paths, PixelResult* results,
+                                       RayCounters& counters) const {
+    const int k = settings_.lightEdgeRays;
+    thread_local std::vector<int> marked;  // in the pixels being shaded
+    thread_local std::vector<float> px, py;
+    thread_local std::vector<glm::vec3> directions, seen;
+    marked.clear();
+    for (int i = 0; i < count; ++i)
+        if (lightEdges_.contains(pixels[i].x, pixels[i].y)) marked.push_back(i);
+    if (marked.empty()) return;
+    const std::size_t rays = marked.size() * std::size_t(k);
+    px.resize(rays);
+    py.resize(rays);
+    directions.resize(rays);
+    seen.assign(marked.size(), glm::vec3(0.0f));
+    for (std::size_t m = 0; m < marked.size(); ++m) {
+        const Pixel& pixel = pixels[marked[m]];
+        // The first k Sobol' points, with bits of this pixel and frame: stratified in the
+        // pixel, and independent from frame to frame, so that the halves of the error estimate
+        // (RowAccumulator::meanRow) see this light's noise as it is. (Points of one sequence
+        // over the frames would converge faster but make the halves differ more than the mean
+        // errs: docs/ERROR_ESTIMATE.md.)
+        const std::uint64_t h =
+            hashValues(settings_.seed, static_cast<std::uint32_t>(SampleStream::LightEdgeRays),
+                       pixel.index, frame);
+        for (int r = 0; r < k; ++r) {
+            const std::size_t j = m * std::size_t(k) + std::size_t(r);
+            px[j] = float(pixel.x) + Sobol::scrambled(std::uint32_t(r), 0, std::uint32_t(h));
+            py[j] = float(pixel.y) + Sobol::scrambled(std::uint32_t(r), 1, std::uint32_t(h >> 32));
+        }
+        paths[marked[m]].lightFromEdgeRays = true;
+    }
+    camera_.directions(px.data(), py.data(), int(rays), directions.data());
+    traceInPackets(
+        int(rays),
+        [&](int j) {
+            return std::pair{camera_.origin(), directions[std::size_t(j)]};
+        },
+        [&](int j, bool found, const SurfacePoint& hit) {
+            seen[std::size_t(j / k)] += seenDirectly(found, hit, directions[std::size_t(j)]);
+        },
+        counters);
+    for (std::size_t m = 0; m < marked.size(); ++m)
+        results[marked[m]].unfiltered += seen[m] / float(k);
 }
 
 void IgiIntegrator::traceEyeRays(PixelPath* paths, int count, RayCounters& counters) const {
@@ -174,7 +233,7 @@ void IgiIntegrator::splitAtFirstHit(PixelPath& p, int pixel, PixelResult& result
                                     RayCounters& counters) const {
     const SurfacePoint& hit = p.hit;
     const glm::vec3 wo = -p.direction;
-    result.unfiltered += emittedToward(hit, wo);
+    if (!p.lightFromEdgeRays) result.unfiltered += emittedToward(hit, wo);
     const Lobes lobes = lobesAt(hit, wo);
 
     // Split once: the non-delta part here, and one path per delta component, whose first ray

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "integrators/EndPointShader.h"
+#include "integrators/LightEdges.h"
 #include "integrators/PathRandom.h"
 #include "integrators/PixelResult.h"
 #include "integrators/PixelSampler.h"
@@ -52,6 +53,13 @@ class IgiIntegrator {
     struct PixelPath;
     struct Continuation;
     void traceEyeRays(PixelPath* paths, int count, RayCounters& counters) const;
+    /// At the pixels of lightEdges_, the light seen directly (emitters and sky) from
+    /// settings_.lightEdgeRays rays of their own, into the results' unfiltered radiance, in
+    /// place of what the eye ray's own hit sees (RenderSettings::lightEdgeRays).
+    void gatherLightAtEdges(const Pixel* pixels, int count, std::uint32_t frame, PixelPath* paths,
+                            PixelResult* results, RayCounters& counters) const;
+    /// The light an eye ray along `direction` sees directly: its hit's emission, or the sky.
+    glm::vec3 seenDirectly(bool found, const SurfacePoint& hit, glm::vec3 direction) const;
     void traceContinuations(std::vector<Continuation>& rays, RayCounters& counters) const;
     /// Rays ray(0 .. count - 1) (origin, direction), traced in packets of the scene's width;
     /// land(k, found, hit) takes each one's result.
@@ -80,6 +88,7 @@ class IgiIntegrator {
     RenderSettings settings_;
     const CameraModel& camera_;
     EndPointShader shader_;
+    LightEdges lightEdges_;  ///< where gatherLightAtEdges works (empty: lightEdgeRays 0)
 };
 
 }  // namespace igi

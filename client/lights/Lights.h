@@ -85,6 +85,13 @@ class Lights {
     /// (mesh, triangle), for multiple importance sampling; 0 if it is not a light.
     float areaPdfAt(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p, glm::vec3 n) const;
 
+    /// Calls f(a, b, c) with the corners of each emissive triangle.
+    template <class F>
+    void forEachTriangle(F&& f) const {
+        for (const Emitter& e : emitters_)
+            if (e.kind == Kind::Triangle) f(e.p0, e.p0 + e.e1, e.p0 + e.e2);
+    }
+
     /// Total emitted power, summed luminance (for tests and statistics).
     double totalPower() const { return distribution_.total(); }
     /// Whether some light is directional (light paths then start at parallelStart).

@@ -143,6 +143,11 @@ struct RenderSettings {
 
     // Eye paths: specular bounces followed to a diffuse end point.
     int maxEyeDepth = 8;
+    /// Eye rays of their own, per pixel and frame, that gather the light seen directly
+    /// (emitters, the sky) where the outline of an emissive triangle crosses the pixel
+    /// (LightEdges): one eye ray finds there a light much brighter than the rest of the
+    /// footprint in few frames. 0: the eye ray's own hit alone, everywhere.
+    int lightEdgeRays = 16;
 
     // Discontinuity buffer on the master; a size of 0 means "the interleaving size".
     int filterX = 0;

@@ -19,6 +19,7 @@ enum class SampleStream : std::uint32_t {
     SelectivePhotons = 8,        ///< selective photon tracing's Halton paths (keyed by index)
     StableVplPaths = 9,          ///< instant caching's light paths, the same in every frame
     VplChoice = 10,              ///< the offset of each set's choice of VPLs (VplChoice)
+    LightEdgeRays = 11,          ///< the eye rays that gather the light seen at its edges
 };
 
 /// The random bit vector for one dimension of one stream in one frame. Every client derives the

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "math/Lanes.h"
@@ -25,6 +26,21 @@ class CameraModel {
     }
 
     glm::vec3 origin() const { return origin_; }
+
+    /// How far `p` is in front of the camera, along the viewing direction (< 0: behind).
+    float depth(glm::vec3 p) const { return glm::dot(p - origin_, forward_); }
+    /// The image position (in pixels, as direction() takes it) that `p` projects to; only for
+    /// depth(p) > 0.
+    glm::vec2 pixelOf(glm::vec3 p) const {
+        const glm::vec3 d = p - origin_;
+        const float z = glm::dot(d, forward_);
+        // d = z (forward + sx right_ + sy up_), right_ and up_ orthogonal to forward.
+        const float sx = glm::dot(d, right_) / (z * glm::dot(right_, right_));
+        const float sy = glm::dot(d, up_) / (z * glm::dot(up_, up_));
+        return {0.5f * (sx + 1.0f) * width_, 0.5f * (1.0f - sy) * height_};
+    }
+    int width() const { return int(width_); }
+    int height() const { return int(height_); }
 
     /// Unit direction through image position (px, py), in pixels.
     glm::vec3 direction(float px, float py) const {

@@ -35,3 +35,28 @@ TEST(CameraModel, DirectionsFourAtATimeHaveTheBitsOfOneAtATime) {
 
 }  // namespace
 }  // namespace igi
+
+namespace igi {
+namespace {
+
+// pixelOf inverts direction(): a point along the ray through (px, py) projects back there,
+// near or far, with any camera (to float precision: the camera's position is subtracted).
+TEST(CameraModel, PixelOfInvertsDirection) {
+    const Camera cameras[] = {{}, {{3, -2, 5}, {0.5f, 1, -4}, {0, 0, 1}, 70.0f}};
+    for (const Camera& c : cameras) {
+        const CameraModel camera(c, 320, 200);
+        for (const float px : {0.0f, 13.25f, 160.0f, 319.5f})
+            for (const float py : {0.0f, 99.75f, 199.0f})
+                for (const float t : {0.5f, 1.0f, 1e3f}) {
+                    const glm::vec3 p = camera.origin() + t * camera.direction(px, py);
+                    EXPECT_GT(camera.depth(p), 0.0f);
+                    const glm::vec2 back = camera.pixelOf(p);
+                    EXPECT_NEAR(back.x, px, 2e-3f) << t;
+                    EXPECT_NEAR(back.y, py, 2e-3f) << t;
+                }
+        EXPECT_LT(camera.depth(camera.origin() - camera.direction(160, 100)), 0.0f);
+    }
+}
+
+}  // namespace
+}  // namespace igi

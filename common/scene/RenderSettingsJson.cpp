@@ -93,6 +93,7 @@ void readCausticsAndEyePaths(const JsonNode& section, RenderSettings& s) {
     readFloat(section, "caustic_radius", NumberRange::open(0, 1), s.causticRadius);
     // Specular bounces followed from the eye.
     readInt(section, "max_eye_depth", 0, 64, s.maxEyeDepth);
+    readInt(section, "light_edge_rays", 0, 1024, s.lightEdgeRays);
 }
 
 void readFilterAndOutput(const JsonNode& section, RenderSettings& s) {
@@ -178,6 +179,7 @@ void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& setting
                        "caustic_photons",
                        "caustic_radius",
                        "max_eye_depth",
+                       "light_edge_rays",
                        "filter",
                        "filter_depth_threshold",
                        "filter_normal_threshold",
@@ -256,6 +258,7 @@ nlohmann::json renderSettingsJson(const RenderSettings& s) {
             {"caustic_photons", s.causticPhotons},
             {"caustic_radius", s.causticRadius},
             {"max_eye_depth", s.maxEyeDepth},
+            {"light_edge_rays", s.lightEdgeRays},
             {"filter", {s.filterX, s.filterY}},
             {"filter_depth_threshold", s.filterDepthThreshold},
             {"filter_normal_threshold", s.filterNormalThreshold},
