@@ -265,9 +265,10 @@ IGI_LANES void poolVariance(const Pool& p, const double* own, const double* colu
 
 /// The estimated relMSE of each pixel of row y's mean after `frames` (>= 2) frames, in cell
 /// order, from the sums; `weight`: the filtered mean's weight in the blend (null: 1); `mean`:
-/// the mean's R, G, B as shown (floats, cell order). RowAccumulator::meanRow says why. With
-/// varying counts (l.counts) each pixel's own `frames` and `firstHalf`: 0 where a half has
-/// none.
+/// the mean's R, G, B as shown (floats, cell order). RowAccumulator::meanRow says why: the
+/// noise, from the halves' difference, and with the unfiltered sums (withdrawBlur) the filter's
+/// blur, whose square is estimated without the noise it carries. With varying counts
+/// (l.counts) each pixel's own `frames` and `firstHalf`: 0 where a half has none.
 void estimateErrors(const Layout& l, const std::vector<double>& sums, int y, int frames,
                     int firstHalf, int width, const double* weight, float* const* mean,
                     double* error) {
@@ -284,25 +285,32 @@ void estimateErrors(const Layout& l, const std::vector<double>& sums, int y, int
             continue;
         }
         // Var(mean) = E[(A - B)^2] nA nB / n^2 (see meanRow); the 1/3 averages the channels.
-        const double scale = nA * nB / (n * n) / 3.0;
+        const double spread = nA * nB / (n * n), scale = spread / 3.0;
         const double* s = l.block(sums, y, i / kBlock) + i % kBlock;
         const double w = weight ? weight[i] : 1.0;
-        double e = 0.0;
+        double e = 0.0, blurs = 0.0;
         for (int c = 0; c < 3; ++c) {
             const double all = s[(kFilteredSum + c) * kBlock], even = s[(l.even + c) * kBlock];
             double a = even / nA, b = (all - even) / nB;
+            double blur = 0.0;  // the squared bias of the filtered mean's share, w^2 bias^2
             if (l.withdraw && w < 1.0) {
-                // The blend's two halves, with the weight of the whole: the mean shown is
-                // (nA A + nB B) / n exactly.
                 const double uAll = s[(kUnfilteredSum + c) * kBlock];
                 const double uEven = s[(l.even + 3 + c) * kBlock];
-                a = w * a + (1.0 - w) * (uEven / nA);
-                b = w * b + (1.0 - w) * ((uAll - uEven) / nB);
+                const double uA = uEven / nA, uB = (uAll - uEven) / nB;
+                // The blur: filtered minus unfiltered mean, d, whose square holds bias^2 and
+                // d's own variance, which the halves' d estimate as they do the mean's.
+                const double d = (all - uAll) / n, dA = a - uA, dB = b - uB;
+                blur = w * w * std::max(0.0, d * d - (dA - dB) * (dA - dB) * spread);
+                // The blend's two halves, with the weight of the whole: the mean shown is
+                // (nA A + nB B) / n exactly.
+                a = w * a + (1.0 - w) * uA;
+                b = w * b + (1.0 - w) * uB;
             }
-            const double shown = mean[c][i];
-            e += (a - b) * (a - b) / (shown * shown + kRelativeMseEpsilon);
+            const double shown = mean[c][i], denominator = shown * shown + kRelativeMseEpsilon;
+            e += (a - b) * (a - b) / denominator;
+            blurs += blur / denominator;
         }
-        error[i] = e * scale;
+        error[i] = e * scale + blurs / 3.0;
     }
 }
 

@@ -70,8 +70,12 @@ class RowAccumulator {
     ///     Var(mean) = E[(A - B)^2] nA nB / n^2    (1/4 for nA = nB).
     /// With the progressive filter the mean shown is w F + (1 - w) U (F, U the filtered and
     /// unfiltered means); A and B are blended with the same w, so that their combination is
-    /// still the mean shown exactly. The relMSE's denominator takes the mean shown for the
-    /// truth. What this cannot see: a bias common to all frames (the blur the filter keeps
+    /// still the mean shown exactly; and where w < 1 (the filter saw its blur) the blur is
+    /// added: d = F - U holds the blur's bias and d's own noise, which the halves' d estimate
+    /// as the mean's, so w^2 max(0, d^2 - (dA - dB)^2 nA nB / n^2) estimates the squared bias
+    /// the blend keeps (high by chance where there is no blur: the pixels the filter withdraws
+    /// by chance are those whose d is large). The relMSE's denominator takes the mean shown for
+    /// the truth. What this cannot see: a bias common to all frames (the blur the filter keeps
     /// where w = 1, the converged estimator's remaining bias), w's own dependence on the data,
     /// and a denominator that is noisy itself while the mean is (dark pixels after few
     /// frames). A bias of the first frame alone (the paper's clamp, which the converging
