@@ -4,6 +4,7 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -159,6 +160,20 @@ double addAndEstimate(RowAccumulator& rows, const CellOrder& order, int w, int h
     return sum / (double(w) * h);
 }
 
+// The image's estimated relMSE (the pixels' mean) and the mean's actual relMSE against
+// `truth`, the same at every pixel.
+std::pair<double, double> estimateAndActual(const Readout& r, glm::vec3 truth) {
+    double estimate = 0, actual = 0;
+    for (std::size_t p = 0; p < r.error.size(); ++p) {
+        estimate += r.error[p];
+        for (int c = 0; c < 3; ++c) {
+            const double d = r.mean[p][c] - truth[c];
+            actual += d * d / (double(truth[c]) * truth[c] + 0.01) / 3.0;
+        }
+    }
+    return {estimate / double(r.error.size()), actual / double(r.error.size())};
+}
+
 // A constant image plus Gaussian noise of a known spread: after n frames the mean's relMSE is
 // sigma^2 / n / (c^2 + 0.01) per channel, and the estimate from the two half-means must find
 // it within a few per cent (its own noise over 64 x 64 x 3 values is about 1.3 %), at even and
@@ -193,15 +208,7 @@ TEST(RowAccumulator, EstimatesTheRelMseOfNoiseOfAKnownSpread) {
                 const Readout r =
                     addFrame(rows, order, w, h, filtered, withdraw ? unfiltered : filtered, nullptr,
                              lanes::bestIsa());
-                double estimate = 0, actual = 0;
-                for (std::size_t p = 0; p < r.error.size(); ++p) {
-                    estimate += r.error[p];
-                    for (int c = 0; c < 3; ++c)
-                        actual += (r.mean[p][c] - shownLevel[c]) * (r.mean[p][c] - shownLevel[c]) /
-                                  (double(shownLevel[c]) * shownLevel[c] + 0.01) / 3.0;
-                }
-                estimate /= double(r.error.size());
-                actual /= double(r.error.size());
+                const auto [estimate, actual] = estimateAndActual(r, shownLevel);
                 if (n == 1) {
                     EXPECT_EQ(estimate, 0.0) << "one frame has no spread";
                     continue;
@@ -393,14 +400,7 @@ TEST(RowAccumulator, SeesTheBlurTheFilterKeepsWhereItWithdraws) {
         const Readout r =
             addFrame(rows, order, w, h, filtered, unfiltered, nullptr, lanes::bestIsa());
         if (n != 16 && n != 64) continue;
-        double estimate = 0, actual = 0;
-        for (std::size_t p = 0; p < r.error.size(); ++p) {
-            estimate += r.error[p];
-            for (int c = 0; c < 3; ++c) {
-                const double d = r.mean[p][c] - level[c];
-                actual += d * d / (double(level[c]) * level[c] + 0.01) / 3.0;
-            }
-        }
+        const auto [estimate, actual] = estimateAndActual(r, level);
         EXPECT_GT(estimate / actual, 0.7) << n << " frames";
         EXPECT_LT(estimate / actual, 1.3) << n << " frames";
     }
