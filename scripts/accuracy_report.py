@@ -121,6 +121,35 @@ def log(msg):
     print(f"[accuracy {time.strftime('%H:%M:%S')}] {msg}", flush=True)
 
 
+def add_bench_arguments(p, name, doc, csv_name, ref_frames, scenes=""):
+    """The options of the per-scene reports that compare sessions with the cached references
+    (error_estimate_report, adaptive_tiles_report, light_edges_report): where they write, the
+    scenes, the image, the sessions and the references' samples."""
+    p.add_argument("--build", default=os.path.join(ROOT, "build"))
+    p.add_argument("--out", default=os.path.join(ROOT, "out", name))
+    p.add_argument("--ref", default=os.path.join(ROOT, "out", "reference"), help="cached references (not in git)")
+    p.add_argument("--doc", default=os.path.join(ROOT, "docs", doc))
+    p.add_argument("--csv", default=os.path.join(ROOT, "docs", "accuracy", csv_name))
+    p.add_argument("--scenes", default=scenes, help="comma-separated subset of: " + ", ".join(SCENE_NAMES))
+    p.add_argument("--width", type=int, default=160)
+    p.add_argument("--height", type=int, default=120)
+    p.add_argument("--clients", type=int, default=2)
+    p.add_argument("--frames", type=int, default=256)
+    p.add_argument("--seed", type=int, default=3, help="igi's session seed (the references use 1 and 2)")
+    p.add_argument("--ref-spp", type=int, default=64)
+    p.add_argument("--ref-frames", type=int, default=ref_frames,
+                   help=f"both halves together (default {64 * ref_frames} spp; the default scene's reference 4 "
+                        "times that)")
+
+
+def bench_for(a):
+    """The Bench that renders, caches and compares the references, for add_bench_arguments'
+    options (a.build made absolute)."""
+    a.build = os.path.abspath(a.build)
+    return Bench(argparse.Namespace(build=a.build, baseline_bin="", out=a.out, ref=a.ref, clients=a.clients,
+                                    width=a.width, height=a.height, ref_spp=a.ref_spp, ref_frames=a.ref_frames))
+
+
 def frame_counts(n, start=1):
     """start, 2 start, 4 start, ... below n, and n: the accumulated images the curves keep."""
     ks, k = [], start

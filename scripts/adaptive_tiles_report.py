@@ -145,35 +145,19 @@ def table(rows):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--build", default=os.path.join(ROOT, "build"))
-    p.add_argument("--out", default=os.path.join(ROOT, "out", "adaptive-tiles"))
-    p.add_argument("--ref", default=os.path.join(ROOT, "out", "reference"), help="cached references (not in git)")
-    p.add_argument("--doc", default=os.path.join(ROOT, "docs", "ERROR_ESTIMATE.md"))
-    p.add_argument("--csv", default=os.path.join(ROOT, "docs", "accuracy", "adaptive-tiles.csv"))
-    p.add_argument("--scenes", default=DEFAULT_SCENES,
-                   help="comma-separated subset of: " + ", ".join(accuracy_report.SCENE_NAMES))
-    p.add_argument("--width", type=int, default=160)
-    p.add_argument("--height", type=int, default=120)
+    accuracy_report.add_bench_arguments(p, "adaptive-tiles", "ERROR_ESTIMATE.md", "adaptive-tiles.csv",
+                                        ref_frames=64, scenes=DEFAULT_SCENES)
     p.add_argument("--tile-size", type=int, default=8,
                    help="tile edge (default 8: at 160 x 120, 35 regions, as tiles of 32 give at 640 x 480)")
-    p.add_argument("--clients", type=int, default=2)
-    p.add_argument("--frames", type=int, default=256)
     p.add_argument("--target-frames", default="32,64,128",
                    help="the targets: the plain session's estimate after these frames")
-    p.add_argument("--seed", type=int, default=3, help="igi's session seed (the references use 1 and 2)")
-    p.add_argument("--ref-spp", type=int, default=64)
-    p.add_argument("--ref-frames", type=int, default=64,
-                   help="both halves together (default 4096 spp; the default scene's reference 4 times that)")
     p.add_argument("--command", default="scripts/adaptive_tiles_report.py")
     a = p.parse_args()
-    a.build = os.path.abspath(a.build)
     a.command = a.command.strip()
     a.target_frames = [int(k) for k in a.target_frames.split(",") if k]
     if any(k < 1 or k > a.frames for k in a.target_frames):
         sys.exit(f"--target-frames must lie in [1, --frames = {a.frames}]")
-    bench_args = argparse.Namespace(build=a.build, baseline_bin="", out=a.out, ref=a.ref, clients=a.clients,
-                                    width=a.width, height=a.height, ref_spp=a.ref_spp, ref_frames=a.ref_frames)
-    bench = accuracy_report.Bench(bench_args)
+    bench = accuracy_report.bench_for(a)
     started = report_util.machine()
     all_rows, blocks = [], []
     for name in [s for s in a.scenes.split(",") if s]:

@@ -105,27 +105,12 @@ def table(rows, ks):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--build", default=os.path.join(ROOT, "build"))
-    p.add_argument("--out", default=os.path.join(ROOT, "out", "light-edges"))
-    p.add_argument("--ref", default=os.path.join(ROOT, "out", "reference"), help="cached references (not in git)")
-    p.add_argument("--doc", default=os.path.join(ROOT, "docs", "ACCURACY.md"))
-    p.add_argument("--csv", default=os.path.join(ROOT, "docs", "accuracy", "light-edges.csv"))
-    p.add_argument("--scenes", default="", help="comma-separated subset of: " + ", ".join(accuracy_report.SCENE_NAMES))
-    p.add_argument("--width", type=int, default=160)
-    p.add_argument("--height", type=int, default=120)
-    p.add_argument("--clients", type=int, default=2)
-    p.add_argument("--frames", type=int, default=256)
-    p.add_argument("--seed", type=int, default=3)
+    accuracy_report.add_bench_arguments(p, "light-edges", "ACCURACY.md", "light-edges.csv", ref_frames=64)
     p.add_argument("--render-references", action="store_true")
-    p.add_argument("--ref-spp", type=int, default=64)
-    p.add_argument("--ref-frames", type=int, default=64, help="both halves together: 4096 spp by default")
     p.add_argument("--command", default="scripts/light_edges_report.py")
     a = p.parse_args()
-    a.build = os.path.abspath(a.build)
     names = [s for s in a.scenes.split(",") if s] or accuracy_report.SCENE_NAMES
-    bench_args = argparse.Namespace(build=a.build, baseline_bin="", out=a.out, ref=a.ref, clients=a.clients,
-                                    width=a.width, height=a.height, ref_spp=a.ref_spp, ref_frames=a.ref_frames)
-    bench = accuracy_report.Bench(bench_args)
+    bench = accuracy_report.bench_for(a)
     started = report_util.machine()
     rows = []
     for name in names:
