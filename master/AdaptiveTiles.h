@@ -27,7 +27,8 @@ namespace igi {
 class AdaptiveTiles {
   public:
     /// Fewer frames than this give an estimate too noisy to stop a region on (ERROR_ESTIMATE.md:
-    /// at 4 to 16 frames it is 0.4x to 0.7x the true error on the interiors).
+    /// at 4 to 16 frames it is 0.5x to 0.8x the true error on the boxes with glass or glossy
+    /// lobes).
     static constexpr int kMinFrames = 16;
 
     /// For frames of `layout` (makeTiles(width, height, n, m, tileSize)), `lag` frames open at
