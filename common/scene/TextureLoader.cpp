@@ -131,6 +131,38 @@ int alphaChannelOf(const OIIO::ImageSpec& spec) {
     return a >= 0 && a < kMaxReadChannels && a < spec.nchannels ? a : -1;
 }
 
+// Channels [0, channels) of every pixel as `type` (T's type). OpenImageIO 2.4 reads directly
+// into the caller's buffer only when asked for the file's own format (TypeDesc::UNKNOWN); asked
+// for any named format, even the file's, it converts through a scratch buffer of 64 MB whatever
+// the image's size. So the pixels are read as the file stores them and converted here. That
+// buffer took most of the scene fuzzer's time (under AddressSanitizer each one is mapped,
+// poisoned and quarantined) and cost every texture decode a 64 MB allocation.
+template <typename T>
+std::vector<T> readPixels(OIIO::ImageInput& in, const std::string& name, std::size_t count,
+                          int channels, OIIO::TypeDesc type) {
+    const OIIO::ImageSpec& spec = in.spec();
+    std::vector<T> pixels(count * channels);
+    bool ok = false;
+    if (!spec.channelformats.empty()) {
+        // Per-channel formats: OpenImageIO's own conversion is the only one.
+        ok = in.read_image(0, 0, 0, channels, type, pixels.data());
+    } else if (spec.format == type) {
+        ok = in.read_image(0, 0, 0, channels, OIIO::TypeDesc::UNKNOWN, pixels.data());
+    } else {
+        std::vector<unsigned char> native(pixels.size() * spec.format.size());
+        ok = in.read_image(0, 0, 0, channels, OIIO::TypeDesc::UNKNOWN, native.data());
+        // convert_pixel_values counts values in an int: convert in slices.
+        constexpr std::size_t kSlice = std::size_t(1) << 24;
+        for (std::size_t at = 0; ok && at < pixels.size(); at += kSlice) {
+            const std::size_t n = std::min(kSlice, pixels.size() - at);
+            ok = OIIO::convert_pixel_values(spec.format, native.data() + at * spec.format.size(),
+                                            type, pixels.data() + at, static_cast<int>(n));
+        }
+    }
+    if (!ok) throw SceneError::inFile(name, "cannot decode image: " + in.geterror());
+    return pixels;
+}
+
 // Keeps texture.alpha only when some value is below one.
 void finishAlpha(Texture& texture) {
     float least = 1.0f;
@@ -151,10 +183,8 @@ void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture,
     if (alphaChannel >= 0) texture.alpha.resize(count);
     if (spec.format == OIIO::TypeDesc::UINT8 && !isLinear(spec) && !data) {
         // The common case (JPEG, PNG): a table lookup per channel instead of a pow.
-        std::vector<unsigned char> pixels(count * channels);
-        if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data())) {
-            throw SceneError::inFile(name, "cannot decode image: " + in.geterror());
-        }
+        const auto pixels =
+            readPixels<unsigned char>(in, name, count, channels, OIIO::TypeDesc::UINT8);
         const auto& table = srgbTable();
         for (std::size_t i = 0; i < count; ++i) {
             texture.texels[i] =
@@ -163,10 +193,7 @@ void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture,
                 texture.alpha[i] = static_cast<float>(pixels[i * channels + alphaChannel]) / 255.0f;
         }
     } else {
-        std::vector<float> pixels(count * channels);
-        if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data())) {
-            throw SceneError::inFile(name, "cannot decode image: " + in.geterror());
-        }
+        const auto pixels = readPixels<float>(in, name, count, channels, OIIO::TypeDesc::FLOAT);
         const bool linear = data || isLinear(spec);
         for (std::size_t i = 0; i < count; ++i) {
             texture.texels[i] = rgbAt(pixels, i, channels, [&](float c) {

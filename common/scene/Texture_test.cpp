@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -95,22 +96,74 @@ TEST(DecodeTexture, PpmIsReadTopRowFirstAndLinearized) {
     expectNear(t.average, (kA + kB + kC + t.texels[3]) * 0.25f);
 }
 
-// A 1 x 2 grey image (white above black) encoded by OpenImageIO in the format of `ext`.
-std::string greyImageBytes(const std::string& ext) {
-    const auto path = testing::scratchPath("grey." + ext);
+// The bytes of an image file with `spec` in the format of `ext`, written by OpenImageIO from
+// float values (converted to the spec's format as the writer stores it).
+std::string imageBytes(const std::string& ext, const OIIO::ImageSpec& spec,
+                       const std::vector<float>& values) {
+    const auto path = testing::scratchPath("image." + ext);
     auto out = OIIO::ImageOutput::create(path.string());
     EXPECT_TRUE(out);
     if (!out) return "";
-    const OIIO::ImageSpec spec(1, 2, 1, OIIO::TypeDesc::UINT8);
     EXPECT_TRUE(out->open(path.string(), spec));
-    const unsigned char pixels[2] = {255, 0};
-    EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels));
+    EXPECT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, values.data()));
     out->close();
     std::ifstream in(path, std::ios::binary);
     std::stringstream bytes;
     bytes << in.rdbuf();
     std::filesystem::remove(path);
     return bytes.str();
+}
+
+// A 1 x 2 grey image (white above black) encoded by OpenImageIO in the format of `ext`.
+std::string greyImageBytes(const std::string& ext) {
+    return imageBytes(ext, OIIO::ImageSpec(1, 2, 1, OIIO::TypeDesc::UINT8), {1.0f, 0.0f});
+}
+
+// The pixels are read in the file's own format and converted by the loader (OpenImageIO would
+// go through a 64 MB buffer otherwise): each stored format gives the values it holds.
+TEST(DecodeTexture, EachStoredFormatGivesItsValues) {
+    // One RGB pixel, read back within half a step of the stored format.
+    const std::vector<float> values = {0.2f, 0.5f, 1.0f};
+    struct Case {
+        std::string ext;
+        OIIO::TypeDesc format;
+        TextureEncoding encoding;
+        float tolerance;
+    };
+    constexpr float k16 = 0.5f / 65535 + 1e-7f;
+    const Case cases[] = {
+        {"png", OIIO::TypeDesc::UINT8, TextureEncoding::Data, 0.5f / 255 + 1e-6f},
+        {"png", OIIO::TypeDesc::UINT16, TextureEncoding::Data, k16},
+        {"exr", OIIO::TypeDesc::HALF, TextureEncoding::Colour, 2e-4f},
+        {"exr", OIIO::TypeDesc::FLOAT, TextureEncoding::Colour, 0.0f},
+        {"tif", OIIO::TypeDesc::UINT16, TextureEncoding::Data, k16},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.ext + " " + c.format.c_str());
+        const Texture t = decodeTexture(
+            "image." + c.ext, imageBytes(c.ext, OIIO::ImageSpec(1, 1, 3, c.format), values), {},
+            c.encoding);
+        ASSERT_EQ(t.texels.size(), 1u);
+        for (int i = 0; i < 3; ++i) EXPECT_NEAR(t.texels[0][i], values[i], c.tolerance);
+    }
+    // A 16-bit colour image is sRGB-encoded: 0.5 is 0.214 in linear light.
+    const Texture srgb = decodeTexture(
+        "image.png", imageBytes("png", OIIO::ImageSpec(1, 1, 3, OIIO::TypeDesc::UINT16), values));
+    EXPECT_NEAR(srgb.texels[0].y, 0.21404f, 1e-4f);
+    // Channels of different formats (half and float in one EXR) are converted by OpenImageIO.
+    OIIO::ImageSpec mixed(1, 1, 3, OIIO::TypeDesc::HALF);
+    mixed.channelformats = {OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::HALF};
+    const Texture m = decodeTexture("mixed.exr", imageBytes("exr", mixed, values));
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(m.texels[0][i], values[i], 2e-4f);
+    // A fifth channel is not read; the first three are the colour, the fourth its alpha.
+    OIIO::ImageSpec five(1, 1, 5, OIIO::TypeDesc::UINT16);
+    five.alpha_channel = 3;
+    const Texture f =
+        decodeTexture("five.tif", imageBytes("tif", five, {0.2f, 0.5f, 1.0f, 0.6f, 0.9f}), {},
+                      TextureEncoding::Data);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(f.texels[0][i], values[i], k16);
+    ASSERT_EQ(f.alpha.size(), 1u);
+    EXPECT_NEAR(f.alpha[0], 0.6f, k16);
 }
 
 // PNG decodes from memory; SGI has no IOProxy reader and goes through a temporary file.
