@@ -38,6 +38,10 @@ for target in ${FUZZ_TARGETS:-protocol scene}; do
   if "$build/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=30 -print_final_stats=1 \
     -artifact_prefix="$artifacts/" "$@" "$corpus" "${seeds[@]}" >"$log" 2>&1; then
     result="ok"
+  elif grep -q 'libFuzzer: run interrupted' "$log"; then
+    # Stopped by a signal (Ctrl-C, kill -INT): no crash, and what it ran still counts.
+    result="interrupted, no crash"
+    status=1
   else
     result="FAILED (reproducer in $artifacts/)"
     status=1
