@@ -143,6 +143,10 @@ std::vector<T> readPixels(OIIO::ImageInput& in, const std::string& name, std::si
     const OIIO::ImageSpec& spec = in.spec();
     std::vector<T> pixels(count * channels);
     bool ok = false;
+    // A value of no size would make the native buffer below too small to read into.
+    if (spec.channelformats.empty() && spec.format.size() == 0)
+        throw SceneError::inFile(name,
+                                 std::string("unsupported pixel format ") + spec.format.c_str());
     if (!spec.channelformats.empty()) {
         // Per-channel formats: OpenImageIO's own conversion is the only one.
         ok = in.read_image(0, 0, 0, channels, type, pixels.data());
