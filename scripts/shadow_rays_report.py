@@ -29,6 +29,7 @@ import sys
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import accuracy_report  # noqa: E402
+import error_estimate_report  # noqa: E402
 import report_util  # noqa: E402
 from report_util import run  # noqa: E402
 
@@ -81,7 +82,7 @@ def session(bench, scene, args, folder, pair, seed, ks):
 
 def measure(bench, spec, args, pairs, seeds):
     scene = scene_args(bench, spec)
-    if not args.render_references and not has_reference(bench, spec, scene):
+    if not args.render_references and not error_estimate_report.bench_has_reference(bench, spec, scene):
         log(f"{spec.name}: no cached reference (--render-references renders it), skipped")
         return []
     ref, info = bench.reference(spec.name, scene, spec.ref_factor)
@@ -113,12 +114,6 @@ def measure(bench, spec, args, pairs, seeds):
             base["rel_mse"] * base["shadow_rays_per_pixel"]) if good else None
         r["error_ratio"] = r["rel_mse"] / base["rel_mse"] if good else None
     return rows
-
-
-def has_reference(bench, spec, scene):
-    a = bench.args
-    prefix = f"{spec.name}-{a.width}x{a.height}-{a.ref_spp * a.ref_frames * spec.ref_factor}spp-"
-    return any(n.startswith(prefix) and n.endswith(".json") for n in os.listdir(a.ref))
 
 
 def median_of(rows, key):
