@@ -54,7 +54,7 @@ glm::vec3 EmissiveTexture::mean() const {
 
 float EmissiveTexture::luminanceBound(float imageMaximum) const {
     const Texture& t = *texture_;
-    if (t.width <= 0 || t.height <= 0 || t.texels.empty()) return 1.0f;  // sample() gives 1
+    if (t.width <= 0 || t.height <= 0 || !t.hasTexels()) return 1.0f;  // sample() gives 1
     const glm::vec2 a = uv0_, b = uv0_ + du1_, c = uv0_ + du2_;
     const glm::vec2 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
     // Texel coordinates as Texture::sample computes them (row 0 at v = 1), one texel around.
@@ -68,15 +68,16 @@ float EmissiveTexture::luminanceBound(float imageMaximum) const {
     float m = 0;
     for (long long y = (long long)y0; y <= (long long)y1; ++y)
         for (long long x = (long long)x0; x <= (long long)x1; ++x)
-            m = std::max(m, luminance(t.texels[std::size_t(wrapIndex(y, t.height)) * t.width +
-                                               std::size_t(wrapIndex(x, t.width))]));
+            m = std::max(
+                m, luminance(t.texel(int(wrapIndex(x, t.width)), int(wrapIndex(y, t.height)))));
     return m;
 }
 
 float maxTexelLuminance(const Texture& texture) {
-    if (texture.width <= 0 || texture.height <= 0 || texture.texels.empty()) return 1.0f;
+    if (texture.width <= 0 || texture.height <= 0 || !texture.hasTexels()) return 1.0f;
     float m = 0;
-    for (const glm::vec3& v : texture.texels) m = std::max(m, luminance(v));
+    for (std::size_t i = 0; i < texture.texelCount(); ++i)
+        m = std::max(m, luminance(texture.texel(i)));
     return m;
 }
 

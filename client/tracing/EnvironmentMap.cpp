@@ -90,7 +90,7 @@ glm::ivec2 EnvironmentMap::texelOf(glm::vec3 toSky) const {
 }
 
 glm::vec3 EnvironmentMap::texel(glm::ivec2 t) const {
-    return factor_ * map_->texels[std::size_t(t.y) * std::size_t(map_->width) + std::size_t(t.x)];
+    return factor_ * map_->texel(t.x, t.y);
 }
 
 glm::vec3 EnvironmentMap::radiance(glm::vec3 toSky) const {

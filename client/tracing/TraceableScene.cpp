@@ -289,12 +289,17 @@ void TraceableScene::intersectPacket(const glm::vec3* origins, const glm::vec3* 
         else
             rtcIntersect16(p.valid, top_, &context, &p.packet);
         const auto& hit = p.packet.hit;
+        HitVertices vertices[N];
         for (int i = 0; i < count; ++i) {
             found[i] = hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
             if (found[i])
-                fillSurfacePoint(hit.geomID[i], hit.instID[0][i], hit.primID[i], hit.u[i], hit.v[i],
-                                 p.packet.ray.tfar[i], hits[i]);
+                vertices[i] = fillGeometry(hit.geomID[i], hit.instID[0][i], hit.primID[i], hit.u[i],
+                                           hit.v[i], p.packet.ray.tfar[i], hits[i]);
         }
+        for (int i = 0; i < count; ++i)
+            if (found[i]) prefetchTextures(vertices[i], hits[i]);
+        for (int i = 0; i < count; ++i)
+            if (found[i]) fillTextures(vertices[i], hits[i]);
     };
     if (count <= 8 && packetWidth_ == 8) {
         HitPacket<8> p;
@@ -319,6 +324,12 @@ TraceableScene::WorldTriangle TraceableScene::worldTriangle(std::uint32_t mesh,
 
 void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, std::uint32_t prim,
                                       float u, float v, float distance, SurfacePoint& hit) const {
+    fillTextures(fillGeometry(geom, inst, prim, u, v, distance, hit), hit);
+}
+
+TraceableScene::HitVertices TraceableScene::fillGeometry(std::uint32_t geom, std::uint32_t inst,
+                                                         std::uint32_t prim, float u, float v,
+                                                         float distance, SurfacePoint& hit) const {
     // Through an instance (every mesh in the instanced layout, the instanced meshes in the flat
     // one), the instance's ID is the mesh's; else the geometry ID is.
     const bool viaInstance = inst != RTC_INVALID_GEOMETRY_ID;
@@ -369,6 +380,30 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
     hit.triangle = prim;
     hit.distance = distance;
     hit.material = &materials_[materialOf(m, prim)];
+    return {&m, t, u, v, interpolated};
+}
+
+void TraceableScene::prefetchTextures(const HitVertices& h, const SurfacePoint& hit) const {
+    const Material& mat = *hit.material;
+    const std::vector<Texture>& textures = *textures_;
+    if (mat.diffuseTexture >= 0) textures[mat.diffuseTexture].prefetch(mat.diffuseUv(hit.uv));
+    if (mat.reflection == Reflection::Ggx && mat.metallicRoughnessTexture >= 0)
+        textures[mat.metallicRoughnessTexture].prefetch(mat.metallicRoughnessUv(hit.uv));
+    if (mat.emissionTexture >= 0) textures[mat.emissionTexture].prefetch(mat.emissionUv(hit.uv));
+    if (mat.perturbsNormal() && !h.m->mesh->uvs.empty()) {
+        if (mat.normalTexture >= 0)
+            textures[mat.normalTexture].prefetch(mat.normalUv(hit.uv));
+        else
+            textures[mat.bumpTexture].prefetch(hit.uv);
+    }
+}
+
+void TraceableScene::fillTextures(const HitVertices& h, SurfacePoint& hit) const {
+    const MeshData& m = *h.m;
+    const Mesh& mesh = *m.mesh;
+    const glm::uvec3 t = h.t;
+    const float u = h.u, v = h.v;
+    const float w = 1.0f - u - v;
     hit.albedo = hit.material->diffuse;
     if (hit.material->diffuseTexture >= 0)
         hit.albedo *=
@@ -390,7 +425,7 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
             ? (*textures_)[hit.material->emissionTexture].sample(hit.material->emissionUv(hit.uv))
             : glm::vec3(1.0f);
     if (hit.material->perturbsNormal() && !mesh.uvs.empty())
-        applyNormalMap(m, t, u, v, interpolated, hit);
+        applyNormalMap(m, t, u, v, h.interpolated, hit);
 }
 
 void TraceableScene::applyNormalMap(const MeshData& m, glm::uvec3 t, float u, float v, glm::vec3 n,

@@ -189,6 +189,23 @@ class TraceableScene {
     /// instanced) at barycentrics (u, v), distance t.
     void fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, std::uint32_t prim, float u,
                           float v, float t, SurfacePoint& hit) const;
+    /// What fillTextures needs of a hit besides the SurfacePoint: its mesh, triangle,
+    /// barycentrics and unit interpolated normal (not yet turned to the face's side).
+    struct HitVertices {
+        const MeshData* m = nullptr;
+        glm::uvec3 t{0};
+        float u = 0, v = 0;
+        glm::vec3 interpolated{0.0f};
+    };
+    /// fillSurfacePoint in two halves, for packets (intersectPacket): the geometry (position,
+    /// normals, uv, material) first, then what the textures give (albedo, roughness and
+    /// metallic, emission, the normal or bump map). Between them prefetchTextures asks the
+    /// memory for every hit's texels at once, so that their waits overlap instead of coming
+    /// one after another.
+    HitVertices fillGeometry(std::uint32_t geom, std::uint32_t inst, std::uint32_t prim, float u,
+                             float v, float t, SurfacePoint& hit) const;
+    void prefetchTextures(const HitVertices& h, const SurfacePoint& hit) const;
+    void fillTextures(const HitVertices& h, SurfacePoint& hit) const;
     /// Replaces hit.shadingNormal by the normal or bump map's (the material has one, the mesh uvs);
     /// `n` is the unit interpolated normal (or the face's) before it was turned to ng's side.
     void applyNormalMap(const MeshData& m, glm::uvec3 t, float u, float v, glm::vec3 n,

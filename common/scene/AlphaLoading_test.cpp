@@ -57,8 +57,8 @@ TEST(AlphaDecode, AlphaChannelIsKeptAndColoursAreNotPremultiplied) {
     EXPECT_FLOAT_EQ(t.alpha[1], 0.0f);
     EXPECT_FLOAT_EQ(t.alphaMinimum, 0.0f);
     // Premultiplied, the clear texel would be black.
-    EXPECT_EQ(t.texels[1], glm::vec3(1.0f));
-    EXPECT_EQ(t.texels[0], glm::vec3(1, 0, 0));
+    EXPECT_EQ(t.texel(1), glm::vec3(1.0f));
+    EXPECT_EQ(t.texel(0), glm::vec3(1, 0, 0));
     // Bilinear: halfway between the texel centres, half covered.
     EXPECT_NEAR(t.sampleAlpha({0.5f, 0.5f}), 0.5f, 1e-6f);
     EXPECT_NEAR(t.sampleAlpha({0.25f, 0.5f}), 1.0f, 1e-6f);
@@ -72,7 +72,7 @@ TEST(AlphaDecode, GreyAlphaAndOpaqueImages) {
     const Texture ga = decodeTexture("ga.png", pngBytes(1, 1, 2, {255, 128}));
     ASSERT_EQ(ga.alpha.size(), 1u);
     EXPECT_NEAR(ga.alpha[0], 128.0f / 255.0f, 1e-6f);
-    EXPECT_EQ(ga.texels[0], glm::vec3(1.0f));
+    EXPECT_EQ(ga.texel(0), glm::vec3(1.0f));
     // An RGBA image whose alpha is one everywhere, and an RGB one: no alpha kept.
     const Texture full = decodeTexture("f.png", pngBytes(1, 1, 4, {10, 20, 30, 255}));
     EXPECT_TRUE(full.alpha.empty());
@@ -80,7 +80,7 @@ TEST(AlphaDecode, GreyAlphaAndOpaqueImages) {
     EXPECT_FLOAT_EQ(full.sampleAlpha({0.3f, 0.3f}), 1.0f);
     const Texture rgb = decodeTexture("c.png", pngBytes(1, 1, 3, {10, 20, 30}));
     EXPECT_TRUE(rgb.alpha.empty());
-    EXPECT_EQ(rgb.texels[0], full.texels[0]);
+    EXPECT_EQ(rgb.texel(0), full.texel(0));
 }
 
 TEST(AlphaDecode, CoverageMapWithoutAlphaIsItsGrey) {

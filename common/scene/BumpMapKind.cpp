@@ -18,16 +18,17 @@ bool isGrey(glm::vec3 t) {
 }  // namespace
 
 bool readsAsNormalMap(const Texture& map) {
-    if (map.texels.empty()) return false;
+    if (!map.hasTexels()) return false;
     std::size_t normal = 0;
     bool rgb = false;
-    for (const glm::vec3& t : map.texels) {
+    for (std::size_t i = 0; i < map.texelCount(); ++i) {
+        const glm::vec3 t = map.texel(i);
         rgb = rgb || !isGrey(t);
         if (!(t.z > 0.5f)) continue;
         const float length = glm::length(2.0f * t - 1.0f);
         if (std::abs(length - 1.0f) <= kUnitTolerance) ++normal;
     }
-    return rgb && double(normal) >= kBlueAboveHalf * double(map.texels.size());
+    return rgb && double(normal) >= kBlueAboveHalf * double(map.texelCount());
 }
 
 }  // namespace igi

@@ -70,7 +70,7 @@ TEST(BumpMapMtl, HeightMapWithItsMultiplier) {
     EXPECT_EQ(m.normalTexture, -1);
     EXPECT_TRUE(m.perturbsNormal());
     // Decoded as data (heights, not colours): 255 is 1 and no sRGB curve bends 128.
-    EXPECT_FLOAT_EQ(s.textures[m.bumpTexture].texels[1].x, 1.0f);
+    EXPECT_FLOAT_EQ(s.textures[m.bumpTexture].texel(1).x, 1.0f);
     // Modelled: no "not modelled" warning names it.
     EXPECT_EQ(log.text().find("bump"), std::string::npos) << log.text();
     // map_bump without -bm: scale 1.

@@ -62,7 +62,7 @@ TEST(EnvironmentJson, MapWithScaleAndRotation) {
     const Texture& t = s.textures[std::size_t(s.environment.texture)];
     EXPECT_EQ(t.width, 4);
     EXPECT_EQ(t.height, 2);
-    EXPECT_FLOAT_EQ(t.texels[1].x, 8.0f);  // row 0 is the top
+    EXPECT_FLOAT_EQ(t.texel(1).x, 8.0f);  // row 0 is the top
     EXPECT_EQ(s.environment.radiance, glm::vec3(2));
     EXPECT_FLOAT_EQ(s.environment.rotateDeg, 90.0f);
 }

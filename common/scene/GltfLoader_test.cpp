@@ -279,9 +279,9 @@ TEST(GltfFeatures, DataTexturesAreNotSrgbDecoded) {
     const std::string pgm = std::string("P5\n1 1\n255\n") + char(128);
     const Texture data = decodeTexture("grey.pgm", pgm, {}, TextureEncoding::Data);
     const Texture colour = decodeTexture("grey.pgm", pgm, {}, TextureEncoding::Colour);
-    EXPECT_NEAR(data.texels[0].x, 128.0f / 255.0f, 1e-6f);
-    EXPECT_NEAR(colour.texels[0].x, 0.2158605f, 1e-4f);  // sRGB 128
-    EXPECT_EQ(data.minimum, data.texels[0]);
+    EXPECT_NEAR(data.texel(0).x, 128.0f / 255.0f, 1e-6f);
+    EXPECT_NEAR(colour.texel(0).x, 0.2158605f, 1e-4f);  // sRGB 128
+    EXPECT_EQ(data.minimum, data.texel(0));
 }
 
 // Little-endian bytes of `values`, as a glTF buffer holds them.
@@ -373,8 +373,8 @@ TEST(GltfEmission, EmissiveTextureIsKeptPerTexel) {
     ASSERT_GE(m.emissionTexture, 0);
     const Texture& t = scene.textures[m.emissionTexture];
     ASSERT_EQ(t.width, 2);
-    EXPECT_EQ(t.texels[0], glm::vec3(0.0f));
-    EXPECT_NEAR(t.texels[1].x, 1.0f, 1e-6f);
+    EXPECT_EQ(t.texel(0), glm::vec3(0.0f));
+    EXPECT_NEAR(t.texel(1).x, 1.0f, 1e-6f);
     EXPECT_TRUE(m.emissionUv.active);
     // Without an emissive factor (its default is black) the texture emits nothing.
     EXPECT_FALSE(scene.materials[1].isEmissive());

@@ -45,10 +45,10 @@ TEST(MtlEmissiveTexture, MapKeMultipliesKePerTexel) {
     EXPECT_EQ(m.emission, glm::vec3(2.0f));
     // Decoded as a colour (sRGB): pure red and pure blue stay 1 in their channel.
     const Texture& t = s.textures.at(std::size_t(m.emissionTexture));
-    ASSERT_EQ(t.texels.size(), 2u);
-    EXPECT_FLOAT_EQ(t.texels[0].x, 1.0f);
-    EXPECT_FLOAT_EQ(t.texels[0].z, 0.0f);
-    EXPECT_FLOAT_EQ(t.texels[1].z, 1.0f);
+    ASSERT_EQ(t.texelCount(), 2u);
+    EXPECT_FLOAT_EQ(t.texel(0).x, 1.0f);
+    EXPECT_FLOAT_EQ(t.texel(0).z, 0.0f);
+    EXPECT_FLOAT_EQ(t.texel(1).z, 1.0f);
     EXPECT_EQ(log.text().find("not modelled"), std::string::npos) << log.text();
 }
 
@@ -88,8 +88,7 @@ TEST(MtlNormalMap, NormIsATangentSpaceNormalMapWithItsMultiplier) {
     const Scene s = mtlScene("norm n.ppm\n");
     const Material& plain = s.materials.at(0);
     EXPECT_FLOAT_EQ(plain.normalScale, 1.0f);
-    EXPECT_NEAR(s.textures.at(std::size_t(plain.normalTexture)).texels[0].x, 128.0f / 255.0f,
-                1e-6f);
+    EXPECT_NEAR(s.textures.at(std::size_t(plain.normalTexture)).texel(0).x, 128.0f / 255.0f, 1e-6f);
 }
 
 TEST(MtlNormalMap, NormWinsOverABumpMapWithAWarning) {

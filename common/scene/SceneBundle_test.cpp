@@ -58,6 +58,8 @@ void expectSameScene(const Scene& a, const Scene& b) {
         EXPECT_EQ(a.textures[i].width, b.textures[i].width);
         EXPECT_EQ(a.textures[i].height, b.textures[i].height);
         EXPECT_EQ(a.textures[i].texels, b.textures[i].texels);
+        EXPECT_EQ(a.textures[i].codes, b.textures[i].codes);
+        EXPECT_EQ(a.textures[i].table, b.textures[i].table);
         EXPECT_EQ(a.textures[i].average, b.textures[i].average);
     }
     ASSERT_EQ(a.punctualLights.size(), b.punctualLights.size());

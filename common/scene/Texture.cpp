@@ -43,9 +43,10 @@ int texelIndex(int i, int n, TextureWrap mode) {
 
 // Bilinear lookup in a row-major width x height image (row 0 at v = 1), continued past its
 // edges by wrapU and wrapV; `fallback` for coordinates that are not finite.
-template <typename T>
-T bilinear(const std::vector<T>& values, int width, int height, glm::vec2 uv, TextureWrap wrapU,
-           TextureWrap wrapV, T fallback) {
+// `at(x, y)` is texel (x, y), row 0 at the top.
+template <typename T, typename At>
+T bilinear(At at, int width, int height, glm::vec2 uv, TextureWrap wrapU, TextureWrap wrapV,
+           T fallback) {
     // Texel centres sit at half-integer coordinates; rows are stored top first while v grows
     // upwards, hence the flip.
     const float x = uv.x * static_cast<float>(width) - 0.5f;
@@ -59,7 +60,6 @@ T bilinear(const std::vector<T>& values, int width, int height, glm::vec2 uv, Te
     const int y0 = static_cast<int>(reduce(fy0, height, wrapV));
     const int xa = texelIndex(x0, width, wrapU), xb = texelIndex(x0 + 1, width, wrapU);
     const int ya = texelIndex(y0, height, wrapV), yb = texelIndex(y0 + 1, height, wrapV);
-    auto at = [&](int px, int py) { return values[static_cast<size_t>(py) * width + px]; };
     const T top = at(xa, ya) * (1.0f - tx) + at(xb, ya) * tx;
     const T bottom = at(xa, yb) * (1.0f - tx) + at(xb, yb) * tx;
     return top * (1.0f - ty) + bottom * ty;
@@ -67,15 +67,39 @@ T bilinear(const std::vector<T>& values, int width, int height, glm::vec2 uv, Te
 
 }  // namespace
 
+void Texture::prefetch(glm::vec2 uv) const {
+    if (width <= 0 || height <= 0 || (codes.empty() && texels.empty())) return;
+    // The lookup's first texel, as bilinear finds it; its neighbours are mostly in the same
+    // cache line (codes' 4 x 4 blocks) or the next row (texels).
+    const float fx0 = std::floor(uv.x * static_cast<float>(width) - 0.5f);
+    const float fy0 = std::floor((1.0f - uv.y) * static_cast<float>(height) - 0.5f);
+    if (!std::isfinite(fx0) || !std::isfinite(fy0)) return;
+    const int x = texelIndex(static_cast<int>(reduce(fx0, width, wrapU)), width, wrapU);
+    const int y = texelIndex(static_cast<int>(reduce(fy0, height, wrapV)), height, wrapV);
+    if (!codes.empty()) {
+        __builtin_prefetch(&codes[codeIndex(x, y)]);
+    } else {
+        const size_t i = static_cast<size_t>(y) * width + x;
+        __builtin_prefetch(&texels[i]);
+        if (i + width < texels.size()) __builtin_prefetch(&texels[i + width]);
+    }
+}
+
 glm::vec3 Texture::sample(glm::vec2 uv) const {
-    if (width <= 0 || height <= 0 || texels.empty()) return glm::vec3(1.0f);
-    return bilinear(texels, width, height, uv, wrapU, wrapV, average);
+    if (width <= 0 || height <= 0) return glm::vec3(1.0f);
+    if (!texels.empty())
+        return bilinear([&](int x, int y) { return texels[static_cast<size_t>(y) * width + x]; },
+                        width, height, uv, wrapU, wrapV, average);
+    if (codes.empty() || table == nullptr) return glm::vec3(1.0f);
+    return bilinear([&](int x, int y) { return texel(x, y); }, width, height, uv, wrapU, wrapV,
+                    average);
 }
 
 float Texture::sampleAlpha(glm::vec2 uv) const {
     if (width <= 0 || height <= 0 || alpha.size() != static_cast<size_t>(width) * height)
         return 1.0f;
-    return bilinear(alpha, width, height, uv, wrapU, wrapV, alphaMinimum);
+    return bilinear([&](int x, int y) { return alpha[static_cast<size_t>(y) * width + x]; }, width,
+                    height, uv, wrapU, wrapV, alphaMinimum);
 }
 
 }  // namespace igi

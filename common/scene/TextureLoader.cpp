@@ -175,6 +175,40 @@ void finishAlpha(Texture& texture) {
     if (least >= 1.0f) std::vector<float>().swap(texture.alpha);
 }
 
+// The linear value of each 8-bit code as OpenImageIO converts UINT8 to FLOAT (a data map's
+// values, or a colour image the file says is linear).
+const std::array<float, 256>& linearTable() {
+    static const std::array<float, 256> table = [] {
+        std::array<unsigned char, 256> codes{};
+        for (int i = 0; i < 256; ++i) codes[i] = static_cast<unsigned char>(i);
+        std::array<float, 256> t{};
+        OIIO::convert_pixel_values(OIIO::TypeDesc::UINT8, codes.data(), OIIO::TypeDesc::FLOAT,
+                                   t.data(), 256);
+        return t;
+    }();
+    return table;
+}
+
+// An 8-bit image: its codes, three per texel (a grey image's repeated), in Texture's tiles,
+// decoded through the table that the float path's conversion would have computed for each code.
+void readCodes(OIIO::ImageInput& in, const std::string& name, Texture& texture, int channels,
+               int alphaChannel, bool linear) {
+    const std::size_t count = static_cast<std::size_t>(texture.width) * texture.height;
+    const auto pixels = readPixels<unsigned char>(in, name, count, channels, OIIO::TypeDesc::UINT8);
+    texture.table = linear ? &linearTable() : &srgbTable();
+    texture.tilesX = (texture.width + 31) / 32;
+    texture.codes.assign(
+        static_cast<std::size_t>(texture.tilesX) * ((texture.height + 31) / 32) * 1024, 0u);
+    for (std::size_t i = 0; i < count; ++i) {
+        const unsigned char* p = &pixels[i * channels];
+        const std::uint32_t r = p[0], g = channels < 3 ? r : p[1], b = channels < 3 ? r : p[2];
+        const int x = int(i % std::size_t(texture.width)), y = int(i / std::size_t(texture.width));
+        texture.codes[texture.codeIndex(x, y)] = r | (g << 8) | (b << 16);
+        if (alphaChannel >= 0)
+            texture.alpha[i] = static_cast<float>(pixels[i * channels + alphaChannel]) / 255.0f;
+    }
+}
+
 void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture,
                 TextureEncoding encoding) {
     const OIIO::ImageSpec& spec = in.spec();
@@ -183,20 +217,12 @@ void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture,
     const int colours = std::min(spec.nchannels, kColourChannels);
     const int channels = std::max(colours, alphaChannel + 1);
     const std::size_t count = static_cast<std::size_t>(texture.width) * texture.height;
-    texture.texels.resize(count);
     if (alphaChannel >= 0) texture.alpha.resize(count);
-    if (spec.format == OIIO::TypeDesc::UINT8 && !isLinear(spec) && !data) {
-        // The common case (JPEG, PNG): a table lookup per channel instead of a pow.
-        const auto pixels =
-            readPixels<unsigned char>(in, name, count, channels, OIIO::TypeDesc::UINT8);
-        const auto& table = srgbTable();
-        for (std::size_t i = 0; i < count; ++i) {
-            texture.texels[i] =
-                rgbAt(pixels, i, channels, [&](unsigned char c) { return table[c]; });
-            if (alphaChannel >= 0)
-                texture.alpha[i] = static_cast<float>(pixels[i * channels + alphaChannel]) / 255.0f;
-        }
+    if (spec.format == OIIO::TypeDesc::UINT8 && spec.channelformats.empty()) {
+        // The common case (JPEG, PNG): codes and a table instead of floats.
+        readCodes(in, name, texture, channels, alphaChannel, data || isLinear(spec));
     } else {
+        texture.texels.resize(count);
         const auto pixels = readPixels<float>(in, name, count, channels, OIIO::TypeDesc::FLOAT);
         const bool linear = data || isLinear(spec);
         for (std::size_t i = 0; i < count; ++i) {
@@ -218,7 +244,7 @@ void readTexels(OIIO::ImageInput& in, const std::string& name, Texture& texture,
     if (alphaChannel < 0 && encoding == TextureEncoding::Coverage) {
         texture.alpha.resize(count);
         for (std::size_t i = 0; i < count; ++i) {
-            const glm::vec3 t = texture.texels[i];
+            const glm::vec3 t = texture.texel(i);
             texture.alpha[i] = std::clamp((t.x + t.y + t.z) / 3.0f, 0.0f, 1.0f);
         }
     }
@@ -250,10 +276,18 @@ void checkImageSize(const std::string& name, const OIIO::ImageSpec& spec,
     }
 }
 
-glm::vec3 meanOf(const std::vector<glm::vec3>& texels) {
+glm::vec3 meanOf(const Texture& texture) {
+    const std::size_t n = texture.texelCount();
     glm::dvec3 sum(0.0);
-    for (const glm::vec3& t : texels) sum += glm::dvec3(t);
-    return texels.empty() ? glm::vec3(0.0f) : glm::vec3(sum / static_cast<double>(texels.size()));
+    for (std::size_t i = 0; i < n; ++i) sum += glm::dvec3(texture.texel(i));
+    return n == 0 ? glm::vec3(0.0f) : glm::vec3(sum / static_cast<double>(n));
+}
+
+glm::vec3 minimumOf(const Texture& texture) {
+    const std::size_t n = texture.texelCount();
+    glm::vec3 m = n == 0 ? glm::vec3(0.0f) : texture.texel(0);
+    for (std::size_t i = 1; i < n; ++i) m = glm::min(m, texture.texel(i));
+    return m;
 }
 
 }  // namespace
@@ -272,9 +306,8 @@ Texture decodeTexture(const std::string& name, const std::string& bytes,
     texture.height = spec.height;
     readTexels(*in, name, texture, encoding);
     in->close();
-    texture.average = meanOf(texture.texels);
-    texture.minimum = texture.texels.empty() ? glm::vec3(0.0f) : texture.texels.front();
-    for (const glm::vec3& t : texture.texels) texture.minimum = glm::min(texture.minimum, t);
+    texture.average = meanOf(texture);
+    texture.minimum = minimumOf(texture);
     return texture;
 }
 

@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -88,12 +89,12 @@ TEST(DecodeTexture, PpmIsReadTopRowFirstAndLinearized) {
     const Texture t = decodeTexture("checker.ppm", disk.read("checker.ppm"));
     ASSERT_EQ(t.width, 2);
     ASSERT_EQ(t.height, 2);
-    expectNear(t.texels[0], kA);
-    expectNear(t.texels[1], kB);
-    expectNear(t.texels[2], kC);
+    expectNear(t.texel(0), kA);
+    expectNear(t.texel(1), kB);
+    expectNear(t.texel(2), kC);
     // sRGB 128/255 is 0.2158 in linear light, not 0.502.
-    EXPECT_NEAR(t.texels[3].x, 0.21586f, 1e-4f);
-    expectNear(t.average, (kA + kB + kC + t.texels[3]) * 0.25f);
+    EXPECT_NEAR(t.texel(3).x, 0.21586f, 1e-4f);
+    expectNear(t.average, (kA + kB + kC + t.texel(3)) * 0.25f);
 }
 
 // The bytes of an image file with `spec` in the format of `ext`, written by OpenImageIO from
@@ -143,27 +144,79 @@ TEST(DecodeTexture, EachStoredFormatGivesItsValues) {
         const Texture t = decodeTexture(
             "image." + c.ext, imageBytes(c.ext, OIIO::ImageSpec(1, 1, 3, c.format), values), {},
             c.encoding);
-        ASSERT_EQ(t.texels.size(), 1u);
-        for (int i = 0; i < 3; ++i) EXPECT_NEAR(t.texels[0][i], values[i], c.tolerance);
+        ASSERT_EQ(t.texelCount(), 1u);
+        for (int i = 0; i < 3; ++i) EXPECT_NEAR(t.texel(0)[i], values[i], c.tolerance);
     }
     // A 16-bit colour image is sRGB-encoded: 0.5 is 0.214 in linear light.
     const Texture srgb = decodeTexture(
         "image.png", imageBytes("png", OIIO::ImageSpec(1, 1, 3, OIIO::TypeDesc::UINT16), values));
-    EXPECT_NEAR(srgb.texels[0].y, 0.21404f, 1e-4f);
+    EXPECT_NEAR(srgb.texel(0).y, 0.21404f, 1e-4f);
     // Channels of different formats (half and float in one EXR) are converted by OpenImageIO.
     OIIO::ImageSpec mixed(1, 1, 3, OIIO::TypeDesc::HALF);
     mixed.channelformats = {OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::HALF};
     const Texture m = decodeTexture("mixed.exr", imageBytes("exr", mixed, values));
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(m.texels[0][i], values[i], 2e-4f);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(m.texel(0)[i], values[i], 2e-4f);
     // A fifth channel is not read; the first three are the colour, the fourth its alpha.
     OIIO::ImageSpec five(1, 1, 5, OIIO::TypeDesc::UINT16);
     five.alpha_channel = 3;
     const Texture f =
         decodeTexture("five.tif", imageBytes("tif", five, {0.2f, 0.5f, 1.0f, 0.6f, 0.9f}), {},
                       TextureEncoding::Data);
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(f.texels[0][i], values[i], k16);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(f.texel(0)[i], values[i], k16);
     ASSERT_EQ(f.alpha.size(), 1u);
     EXPECT_NEAR(f.alpha[0], 0.6f, k16);
+}
+
+// 8-bit images are held as codes in tiles of 32 x 32 texels (Texture::codes): each texel is
+// the value the file holds, and every lookup gives the very bits of the same image held as
+// floats row by row, across tile edges, in every wrap mode.
+TEST(DecodeTexture, EightBitImagesInTilesGiveTheFloatImagesLookups) {
+    const int w = 37, h = 45;  // neither a multiple of 32: partial tiles at both edges
+    std::vector<float> values(std::size_t(w) * h * 3);
+    std::uint32_t state = 12345u;
+    for (float& v : values) {
+        state = state * 1664525u + 1013904223u;
+        v = float(state >> 24) / 255.0f;
+    }
+    const std::string png =
+        imageBytes("png", OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::UINT8), values);
+    for (const TextureEncoding encoding : {TextureEncoding::Colour, TextureEncoding::Data}) {
+        const bool colour = encoding == TextureEncoding::Colour;
+        SCOPED_TRACE(colour ? "colour" : "data");
+        Texture coded = decodeTexture("image.png", png, {}, encoding);
+        ASSERT_FALSE(coded.codes.empty());
+        ASSERT_TRUE(coded.texels.empty());
+        ASSERT_EQ(coded.texelCount(), std::size_t(w) * h);
+        Texture rows = coded;  // the same values as floats, row by row
+        rows.codes.clear();
+        for (std::size_t i = 0; i < coded.texelCount(); ++i) {
+            const glm::vec3 t = coded.texel(i);
+            rows.texels.push_back(t);
+            for (int c = 0; c < 3; ++c) {
+                const float v = values[i * 3 + c];
+                const float expected = !colour         ? v
+                                       : v <= 0.04045f ? v / 12.92f
+                                                       : std::pow((v + 0.055f) / 1.055f, 2.4f);
+                ASSERT_NEAR(t[c], expected, 1e-6f) << "texel " << i << " channel " << c;
+            }
+        }
+        for (const TextureWrap wrap :
+             {TextureWrap::Repeat, TextureWrap::ClampToEdge, TextureWrap::MirroredRepeat}) {
+            coded.wrapU = coded.wrapV = rows.wrapU = rows.wrapV = wrap;
+            for (int k = 0; k < 4000; ++k) {
+                // Lookups over three periods either way, many near texel and tile edges.
+                const glm::vec2 uv(float(k % 97) / 32.0f - 1.0f, float(k / 97) / 13.0f - 1.0f);
+                coded.prefetch(uv);  // a hint: must read nothing outside the image
+                ASSERT_EQ(coded.sample(uv), rows.sample(uv)) << uv.x << ", " << uv.y;
+            }
+        }
+        // Lookups that are not finite give the mean, as the float image's do.
+        const glm::vec2 nan(std::nanf(""), 0.5f);
+        coded.prefetch(nan);
+        coded.prefetch({1e30f, -1e30f});
+        EXPECT_EQ(coded.sample(nan), rows.sample(nan));
+        EXPECT_EQ(coded.sample({1e30f, -1e30f}), rows.sample({1e30f, -1e30f}));
+    }
 }
 
 // PNG decodes from memory; SGI has no IOProxy reader and goes through a temporary file.
@@ -173,8 +226,8 @@ TEST(DecodeTexture, FromMemoryOrTemporaryFileWithGreyReplicated) {
         const Texture t = decodeTexture("grey." + ext, greyImageBytes(ext));
         ASSERT_EQ(t.width, 1);
         ASSERT_EQ(t.height, 2);
-        expectNear(t.texels[0], glm::vec3(1.0f));
-        expectNear(t.texels[1], glm::vec3(0.0f));
+        expectNear(t.texel(0), glm::vec3(1.0f));
+        expectNear(t.texel(1), glm::vec3(0.0f));
         expectNear(t.average, glm::vec3(0.5f));
     }
     // The temporary copies are gone.
