@@ -29,10 +29,12 @@ struct Texture {
     /// waits. A quarter of the float texels' memory, and tiles of 4 x 4 texels in one cache line
     /// and 32 x 32 in one 4 KB page, so that a bilinear lookup and its neighbours (a bump map's
     /// four, the next pixel's) mostly share lines and pages where rows would not. Decoding
-    /// through the table gives the very floats the float path would have stored.
+    /// through the table gives the very floats the float path would have stored. An image
+    /// narrower or lower than a tile keeps its rows (tilesX 0): tiles would pad a 1 x 32768
+    /// strip to 32 times its texels, and a hostile scene could claim many such strips.
     std::vector<std::uint32_t> codes;
     const std::array<float, 256>* table = nullptr;  ///< code -> linear value, for `codes`
-    int tilesX = 0;           ///< 32 x 32 tiles per row of `codes` (the width rounded up, / 32)
+    int tilesX = 0;  ///< 32 x 32 tiles per row of `codes` (the width rounded up, / 32); 0: rows
     glm::vec3 average{0.0f};  ///< mean texel, used for the scene's mean albedo
     glm::vec3 minimum{0.0f};  ///< per channel: bounds a roughness map's sharpest lobe
     /// The first texel (row-major index) whose file value was not finite, or -1; such values
@@ -55,8 +57,9 @@ struct Texture {
                               : texels.size();
     }
     /// Where texel (x, y) is in `codes`: 32 x 32 tiles, row by row; in a tile, 4 x 4 blocks
-    /// (64 bytes) row by row; in a block, texels row by row.
+    /// (64 bytes) row by row; in a block, texels row by row. Without tiles, rows.
     std::size_t codeIndex(int x, int y) const {
+        if (tilesX == 0) return std::size_t(y) * std::size_t(width) + std::size_t(x);
         const std::size_t tile = std::size_t(y >> 5) * std::size_t(tilesX) + std::size_t(x >> 5);
         const unsigned inTile = unsigned((y >> 2) & 7) << 7 | unsigned((x >> 2) & 7) << 4 |
                                 unsigned(y & 3) << 2 | unsigned(x & 3);

@@ -196,9 +196,14 @@ void readCodes(OIIO::ImageInput& in, const std::string& name, Texture& texture, 
     const std::size_t count = static_cast<std::size_t>(texture.width) * texture.height;
     const auto pixels = readPixels<unsigned char>(in, name, count, channels, OIIO::TypeDesc::UINT8);
     texture.table = linear ? &linearTable() : &srgbTable();
-    texture.tilesX = (texture.width + 31) / 32;
+    // Tiles pad the image to whole tiles: at most 3.8 times its texels once it is a tile wide
+    // and high (33 x 33), 15 bytes a texel against the 12 of floats; narrower, rows.
+    const bool tiled = texture.width >= 32 && texture.height >= 32;
+    texture.tilesX = tiled ? (texture.width + 31) / 32 : 0;
     texture.codes.assign(
-        static_cast<std::size_t>(texture.tilesX) * ((texture.height + 31) / 32) * 1024, 0u);
+        tiled ? static_cast<std::size_t>(texture.tilesX) * ((texture.height + 31) / 32) * 1024
+              : count,
+        0u);
     for (std::size_t i = 0; i < count; ++i) {
         const unsigned char* p = &pixels[i * channels];
         const std::uint32_t r = p[0], g = channels < 3 ? r : p[1], b = channels < 3 ? r : p[2];

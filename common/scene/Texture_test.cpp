@@ -171,51 +171,57 @@ TEST(DecodeTexture, EachStoredFormatGivesItsValues) {
 // the value the file holds, and every lookup gives the very bits of the same image held as
 // floats row by row, across tile edges, in every wrap mode.
 TEST(DecodeTexture, EightBitImagesInTilesGiveTheFloatImagesLookups) {
-    const int w = 37, h = 45;  // neither a multiple of 32: partial tiles at both edges
-    std::vector<float> values(std::size_t(w) * h * 3);
-    std::uint32_t state = 12345u;
-    for (float& v : values) {
-        state = state * 1664525u + 1013904223u;
-        v = float(state >> 24) / 255.0f;
-    }
-    const std::string png =
-        imageBytes("png", OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::UINT8), values);
-    for (const TextureEncoding encoding : {TextureEncoding::Colour, TextureEncoding::Data}) {
-        const bool colour = encoding == TextureEncoding::Colour;
-        SCOPED_TRACE(colour ? "colour" : "data");
-        Texture coded = decodeTexture("image.png", png, {}, encoding);
-        ASSERT_FALSE(coded.codes.empty());
-        ASSERT_TRUE(coded.texels.empty());
-        ASSERT_EQ(coded.texelCount(), std::size_t(w) * h);
-        Texture rows = coded;  // the same values as floats, row by row
-        rows.codes.clear();
-        for (std::size_t i = 0; i < coded.texelCount(); ++i) {
-            const glm::vec3 t = coded.texel(i);
-            rows.texels.push_back(t);
-            for (int c = 0; c < 3; ++c) {
-                const float v = values[i * 3 + c];
-                const float expected = !colour         ? v
-                                       : v <= 0.04045f ? v / 12.92f
-                                                       : std::pow((v + 0.055f) / 1.055f, 2.4f);
-                ASSERT_NEAR(t[c], expected, 1e-6f) << "texel " << i << " channel " << c;
-            }
+    for (const glm::ivec2 size : {glm::ivec2(37, 45), glm::ivec2(3, 70)}) {
+        // 37 x 45: tiles, partial at both edges; 3 x 70: narrower than a tile, so rows.
+        SCOPED_TRACE(size.x);
+        const int w = size.x, h = size.y;
+        std::vector<float> values(std::size_t(w) * h * 3);
+        std::uint32_t state = 12345u;
+        for (float& v : values) {
+            state = state * 1664525u + 1013904223u;
+            v = float(state >> 24) / 255.0f;
         }
-        for (const TextureWrap wrap :
-             {TextureWrap::Repeat, TextureWrap::ClampToEdge, TextureWrap::MirroredRepeat}) {
-            coded.wrapU = coded.wrapV = rows.wrapU = rows.wrapV = wrap;
-            for (int k = 0; k < 4000; ++k) {
-                // Lookups over three periods either way, many near texel and tile edges.
-                const glm::vec2 uv(float(k % 97) / 32.0f - 1.0f, float(k / 97) / 13.0f - 1.0f);
-                coded.prefetch(uv);  // a hint: must read nothing outside the image
-                ASSERT_EQ(coded.sample(uv), rows.sample(uv)) << uv.x << ", " << uv.y;
+        const std::string png =
+            imageBytes("png", OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::UINT8), values);
+        for (const TextureEncoding encoding : {TextureEncoding::Colour, TextureEncoding::Data}) {
+            const bool colour = encoding == TextureEncoding::Colour;
+            SCOPED_TRACE(colour ? "colour" : "data");
+            Texture coded = decodeTexture("image.png", png, {}, encoding);
+            ASSERT_FALSE(coded.codes.empty());
+            ASSERT_TRUE(coded.texels.empty());
+            ASSERT_EQ(coded.texelCount(), std::size_t(w) * h);
+            Texture rows = coded;  // the same values as floats, row by row
+            rows.codes.clear();
+            for (std::size_t i = 0; i < coded.texelCount(); ++i) {
+                const glm::vec3 t = coded.texel(i);
+                rows.texels.push_back(t);
+                for (int c = 0; c < 3; ++c) {
+                    const float v = values[i * 3 + c];
+                    const float expected = !colour         ? v
+                                           : v <= 0.04045f ? v / 12.92f
+                                                           : std::pow((v + 0.055f) / 1.055f, 2.4f);
+                    ASSERT_NEAR(t[c], expected, 1e-6f) << "texel " << i << " channel " << c;
+                }
             }
+            for (const TextureWrap wrap :
+                 {TextureWrap::Repeat, TextureWrap::ClampToEdge, TextureWrap::MirroredRepeat}) {
+                coded.wrapU = coded.wrapV = rows.wrapU = rows.wrapV = wrap;
+                for (int k = 0; k < 4000; ++k) {
+                    // Lookups over three periods either way, many near texel and tile edges.
+                    const glm::vec2 uv(float(k % 97) / 32.0f - 1.0f, float(k / 97) / 13.0f - 1.0f);
+                    coded.prefetch(uv);  // a hint: must read nothing outside the image
+                    ASSERT_EQ(coded.sample(uv), rows.sample(uv)) << uv.x << ", " << uv.y;
+                }
+            }
+            // Lookups that are not finite give the mean, as the float image's do.
+            const glm::vec2 nan(std::nanf(""), 0.5f);
+            coded.prefetch(nan);
+            coded.prefetch({1e30f, -1e30f});
+            EXPECT_EQ(coded.sample(nan), rows.sample(nan));
+            EXPECT_EQ(coded.sample({1e30f, -1e30f}), rows.sample({1e30f, -1e30f}));
+            // Tiles hold whole tiles; rows exactly the texels.
+            EXPECT_EQ(coded.codes.size(), w >= 32 ? std::size_t(64 * 64) : std::size_t(w) * h);
         }
-        // Lookups that are not finite give the mean, as the float image's do.
-        const glm::vec2 nan(std::nanf(""), 0.5f);
-        coded.prefetch(nan);
-        coded.prefetch({1e30f, -1e30f});
-        EXPECT_EQ(coded.sample(nan), rows.sample(nan));
-        EXPECT_EQ(coded.sample({1e30f, -1e30f}), rows.sample({1e30f, -1e30f}));
     }
 }
 
