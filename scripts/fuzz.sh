@@ -35,7 +35,13 @@ for target in ${FUZZ_TARGETS:-protocol scene}; do
   mkdir -p "$corpus" "$artifacts"
   echo "== fuzz_$target: $seconds s (log: $log)"
   # New inputs go to the first folder; the seeds are only read.
+  # -purge_allocator_interval=30: once a run's peak memory passes half of -rss_limit_mb (the
+  # scene target's does, near 1 GB), libFuzzer hands the sanitizer's free memory back to the
+  # system every second; a profile of fuzz_scene at 1.08 million inputs put 38 % of its time
+  # there (madvise and TLB flushes). -reload=0: only this process writes the corpus, so listing
+  # its folder again every second (4 % more there, 13,000 files) finds nothing new.
   if "$build/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=30 -print_final_stats=1 \
+    -purge_allocator_interval=30 -reload=0 \
     -artifact_prefix="$artifacts/" "$@" "$corpus" "${seeds[@]}" >"$log" 2>&1; then
     result="ok"
   elif grep -q 'libFuzzer: run interrupted' "$log"; then
