@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace igi {
 
@@ -41,27 +42,43 @@ int texelIndex(int i, int n, TextureWrap mode) {
     return wrap(i, n);
 }
 
-// Bilinear lookup in a row-major width x height image (row 0 at v = 1), continued past its
-// edges by wrapU and wrapV; `fallback` for coordinates that are not finite.
-// `at(x, y)` is texel (x, y), row 0 at the top.
-template <typename T, typename At>
-T bilinear(At at, int width, int height, glm::vec2 uv, TextureWrap wrapU, TextureWrap wrapV,
-           T fallback) {
+// The four texels a bilinear lookup at uv reads in a width x height image (row 0 at v = 1),
+// continued past its edges by wrapU and wrapV, and its weights; nothing for coordinates that
+// are not finite.
+struct Footprint {
+    int xa, xb, ya, yb;
+    float tx, ty;
+};
+
+std::optional<Footprint> footprintOf(glm::vec2 uv, int width, int height, TextureWrap wrapU,
+                                     TextureWrap wrapV) {
     // Texel centres sit at half-integer coordinates; rows are stored top first while v grows
     // upwards, hence the flip.
     const float x = uv.x * static_cast<float>(width) - 0.5f;
     const float y = (1.0f - uv.y) * static_cast<float>(height) - 0.5f;
     const float fx0 = std::floor(x);
     const float fy0 = std::floor(y);
-    if (!std::isfinite(fx0) || !std::isfinite(fy0)) return fallback;
-    const float tx = x - fx0;
-    const float ty = y - fy0;
+    if (!std::isfinite(fx0) || !std::isfinite(fy0)) return std::nullopt;
     const int x0 = static_cast<int>(reduce(fx0, width, wrapU));
     const int y0 = static_cast<int>(reduce(fy0, height, wrapV));
-    const int xa = texelIndex(x0, width, wrapU), xb = texelIndex(x0 + 1, width, wrapU);
-    const int ya = texelIndex(y0, height, wrapV), yb = texelIndex(y0 + 1, height, wrapV);
-    const T top = at(xa, ya) * (1.0f - tx) + at(xb, ya) * tx;
-    const T bottom = at(xa, yb) * (1.0f - tx) + at(xb, yb) * tx;
+    return Footprint{texelIndex(x0, width, wrapU),
+                     texelIndex(x0 + 1, width, wrapU),
+                     texelIndex(y0, height, wrapV),
+                     texelIndex(y0 + 1, height, wrapV),
+                     x - fx0,
+                     y - fy0};
+}
+
+// Bilinear lookup: `at(x, y)` is texel (x, y), row 0 at the top; `fallback` for coordinates
+// that are not finite.
+template <typename T, typename At>
+T bilinear(At at, int width, int height, glm::vec2 uv, TextureWrap wrapU, TextureWrap wrapV,
+           T fallback) {
+    const std::optional<Footprint> f = footprintOf(uv, width, height, wrapU, wrapV);
+    if (!f) return fallback;
+    const float tx = f->tx, ty = f->ty;
+    const T top = at(f->xa, f->ya) * (1.0f - tx) + at(f->xb, f->ya) * tx;
+    const T bottom = at(f->xa, f->yb) * (1.0f - tx) + at(f->xb, f->yb) * tx;
     return top * (1.0f - ty) + bottom * ty;
 }
 
@@ -69,19 +86,15 @@ T bilinear(At at, int width, int height, glm::vec2 uv, TextureWrap wrapU, Textur
 
 void Texture::prefetch(glm::vec2 uv) const {
     if (width <= 0 || height <= 0 || (codes.empty() && texels.empty())) return;
-    // The lookup's first texel, as bilinear finds it; its neighbours are mostly in the same
-    // cache line (codes' 4 x 4 blocks) or the next row (texels).
-    const float fx0 = std::floor(uv.x * static_cast<float>(width) - 0.5f);
-    const float fy0 = std::floor((1.0f - uv.y) * static_cast<float>(height) - 0.5f);
-    if (!std::isfinite(fx0) || !std::isfinite(fy0)) return;
-    const int x = texelIndex(static_cast<int>(reduce(fx0, width, wrapU)), width, wrapU);
-    const int y = texelIndex(static_cast<int>(reduce(fy0, height, wrapV)), height, wrapV);
+    const std::optional<Footprint> f = footprintOf(uv, width, height, wrapU, wrapV);
+    if (!f) return;
+    // The lookup's first texel; the others are mostly in the same cache line (codes' 4 x 4
+    // blocks) or the next row (texels).
     if (!codes.empty()) {
-        __builtin_prefetch(&codes[codeIndex(x, y)]);
+        __builtin_prefetch(&codes[codeIndex(f->xa, f->ya)]);
     } else {
-        const size_t i = static_cast<size_t>(y) * width + x;
-        __builtin_prefetch(&texels[i]);
-        if (i + width < texels.size()) __builtin_prefetch(&texels[i + width]);
+        __builtin_prefetch(&texels[static_cast<size_t>(f->ya) * width + f->xa]);
+        __builtin_prefetch(&texels[static_cast<size_t>(f->yb) * width + f->xa]);
     }
 }
 
