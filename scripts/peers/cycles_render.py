@@ -236,8 +236,13 @@ def _add_mesh(name, positions, triangles, normals, material, uvs=None):
 
 # "principled" (default): the Principled BSDFs as imported (Burley diffuse); "lambert"
 # (IGI_CYCLES_DIFFUSE=lambert): each one's diffuse lobe swapped for a Lambertian Diffuse BSDF
-# (_lambert_diffuse), to measure Burley against Lambert alone.
+# (_lambert_diffuse), to measure Burley against Lambert alone; "spec" (IGI_CYCLES_DIFFUSE=spec):
+# that Lambertian lobe also weighted by 1 - f0, the glTF specification's diffuse weight 1 - F(v.h)
+# at its largest (F >= f0), to measure all that Principled's diffuse departs from the
+# specification by (Burley, and no Fresnel weight), taken at its smallest.
 DIFFUSE = os.environ.get("IGI_CYCLES_DIFFUSE", "principled")
+if DIFFUSE not in ("principled", "lambert", "spec"):
+    sys.exit(f"cycles_render: IGI_CYCLES_DIFFUSE={DIFFUSE!r}: expected principled, lambert or spec")
 
 
 def _source(socket):
@@ -270,23 +275,27 @@ def _alpha_cut_off(material, principled):
     print(f"cycles: {material.name}: alpha MASK at {cutoff:g} applied in the shader", flush=True)
 
 
-def _lambert_diffuse(material, principled):
+def _lambert_diffuse(material, principled, fresnel_weight):
     """Principled (v1, Blender 3.x) = Burley diffuse x base colour x (1 - metallic)(1 -
     transmission) + the specular lobes, the diffuse not weighted by the specular's Fresnel.
     Swapped: the Principled with a black base colour (its specular lobes only: specular tint 0,
     as the importer leaves it) plus a Diffuse BSDF of roughness 0 (Lambert) with that base colour
-    times the same weight and the same normal. Only for opaque dielectrics (metallic 0) with
-    constant transmission (the Burley scene's); others are left as they are, with a message."""
+    times the same weight and the same normal; with `fresnel_weight` also times 1 - f0, f0 =
+    0.08 x Specular (Principled's own mapping: 0.5 is f0 0.04, the specification's ior 1.5). Only
+    for opaque dielectrics (metallic 0) with constant transmission and specular (the Burley
+    scene's); others are left as they are, with a message."""
     nodes, links = material.node_tree.nodes, material.node_tree.links
     ins = principled.inputs
     if ins["Metallic"].is_linked or ins["Transmission"].is_linked or ins["Alpha"].is_linked \
             or ins["Alpha"].default_value < 1 or ins["Subsurface"].default_value > 0 \
-            or ins["Metallic"].default_value > 0:
+            or ins["Metallic"].default_value > 0 or (fresnel_weight and ins["Specular"].is_linked):
         # A metallic > 0 takes its specular colour from the base colour, which the swap blackens;
         # metallic 1 has no diffuse lobe to swap.
         print(f"cycles: {material.name}: diffuse left as Burley (not a constant opaque dielectric)", flush=True)
         return
     weight = (1 - ins["Metallic"].default_value) * (1 - ins["Transmission"].default_value)
+    if fresnel_weight:
+        weight *= 1 - 0.08 * ins["Specular"].default_value
     d = nodes.new("ShaderNodeBsdfDiffuse")
     d.inputs["Roughness"].default_value = 0.0
     colour = nodes.new("ShaderNodeMixRGB")
@@ -367,8 +376,8 @@ def _import_gltf(model):
                         node.distribution = "GGX"
                         if slot.material.blend_method == "CLIP":
                             _alpha_cut_off(slot.material, node)
-                        if DIFFUSE == "lambert":
-                            _lambert_diffuse(slot.material, node)
+                        if DIFFUSE != "principled":
+                            _lambert_diffuse(slot.material, node, DIFFUSE == "spec")
     print(f"cycles: imported {model['file']}: {len(new)} objects", flush=True)
 
 
