@@ -155,8 +155,8 @@ void TileRenderer::renderChunk(TileJob& job, int chunk) {
             local.setsBuilt = 1;
             counters += set->buildRays;
         }
-        local.vpls =
-            std::uint32_t(set->direct.size() + set->directNumbers.size() + set->indirect.size());
+        local.vpls = std::uint32_t(set->exact.size() + set->direct.size() +
+                                   set->directNumbers.size() + set->indirect.size());
         local.causticPhotons =
             std::uint32_t(set->caustics.photons().size() + set->indirectCaustics.photons().size());
         IgiIntegrator::Pixel pixels[kChunkPixels];

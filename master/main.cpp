@@ -252,7 +252,8 @@ int main(int argc, char** argv) {
     std::vector<Numeric> numerics = {
         {"--spp", "path_samples", true, "--integrator path: samples per pixel per frame"},
         {"--direct-samples", "direct_samples", true,
-         "light samples per set (shadow rays per pixel)"},
+         "light samples per set (shadow rays per pixel) among the lights that are not exact (a "
+         "scene's point, spot and sun lights, when at most 4, get one each: docs/LIGHTS.md)"},
         {"--vpl-paths", "vpl_paths", true, "light paths per set (0: from --indirect-vpls)"},
         {"--indirect-vpls", "indirect_vpls", true,
          "wanted indirect VPLs per set (per point with --vpl-sampling importance)"},

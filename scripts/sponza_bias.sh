@@ -5,6 +5,10 @@
 # sqrt(relMSE / pixels)). The scene variants are written beside the build, as copies of
 # scenes/sponza/sunlit.json with one light taken out.
 #
+# Prints, per render and over the seeds, the mean's bias and the relMSE against the path tracer.
+# Renders already in OUT are reused: to compare two builds against one reference, copy the first
+# run's <variant>-path.exr into the second's OUT.
+#
 # Usage: scripts/sponza_bias.sh [BIN] [OUT]   (BIN: where igi-master is, default build/bin)
 # Environment: W, H (80 x 60), FRAMES (IGI, 256), SPP (path tracer spp per frame, 64), PT_FRAMES
 # (16), VARIANTS ("both sun sky"), IGI_FLAGS (extra igi-master flags for IGI), IGI_TAG (names
@@ -45,21 +49,21 @@ render() {  # scene out frames extra...
         --width "$W" --height "$H" --frames "$frames" --output "$out" --log-level warn \
         --listen 127.0.0.1:0 "$@" > "${out%.exr}.log" 2>&1
 }
-bias() {  # image reference: mean(image) / mean(reference) - 1, in %
+bias() {  # image reference: "mean(image) / mean(reference) - 1, in %" and "relMSE"
     "$BIN/igi-compare" "$1" "$2" |
-        python3 -c 'import json,sys; print("%.3f" % (100 * json.load(sys.stdin)["mean_relative_bias"]))'
+        python3 -c 'import json,sys; c = json.load(sys.stdin); print("%.3f %.4g" % (100 * c["mean_relative_bias"], c["relative_mse"]))'
 }
 for v in $VARIANTS; do
     s=$OUT/sponza-$v.json
     render "$s" "$OUT/$v-path.exr" "$PT_FRAMES" --integrator path --spp "$SPP"
     tag=${IGI_TAG:-igi}
-    all=""
+    all="" rels=""
     for seed in $SEEDS; do
         # shellcheck disable=SC2086
         render "$s" "$OUT/$v-$tag-s$seed.exr" "$FRAMES" --seed "$seed" ${IGI_FLAGS:-}
-        b=$(bias "$OUT/$v-$tag-s$seed.exr" "$OUT/$v-path.exr")
-        all="$all $b"
-        echo "$v: IGI ($tag, $FRAMES frames, seed $seed) / path ($((SPP * PT_FRAMES)) spp) - 1 = $b %  (${W}x${H})"
+        read -r b rel < <(bias "$OUT/$v-$tag-s$seed.exr" "$OUT/$v-path.exr")
+        all="$all $b" rels="$rels $rel"
+        echo "$v: IGI ($tag, $FRAMES frames, seed $seed) / path ($((SPP * PT_FRAMES)) spp) - 1 = $b %, relMSE $rel  (${W}x${H})"
     done
     python3 -c '
 import statistics as st, sys
@@ -68,4 +72,9 @@ se = st.stdev(v) / len(v) ** 0.5 if len(v) > 1 else float("nan")
 sd = st.stdev(v) if len(v) > 1 else float("nan")
 print("%s: mean over %d seeds %+.2f %% (standard error %.2f %%, one render'"'"'s spread %.2f %%)" % (sys.argv[1], len(v), st.mean(v), se, sd))
 ' "$v" $all
+    python3 -c '
+import statistics as st, sys
+v = [float(x) for x in sys.argv[2:]]
+print("%s: relMSE against the path tracer, mean over %d seeds %.3g (from %.3g to %.3g)" % (sys.argv[1], len(v), st.mean(v), min(v), max(v)))
+' "$v" $rels
 done

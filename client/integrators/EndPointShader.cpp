@@ -132,7 +132,15 @@ EndPointShader::Pending EndPointShader::queueAt(const ShadingPoint& x, const Lig
     pending.continuation = withRandom && depth < kMaxDepth &&
                            (glossy || (compensate_ && set.compensationShare > 0 &&
                                        set.minDistance2 > 0 && set.indirectLight));
-    pending.point = queue.beginPoint(scene_.offsetOrigin(x.position, x.faceNormal));
+    const glm::vec3 origin = scene_.offsetOrigin(x.position, x.faceNormal);
+    pending.point = queue.beginPoint(origin);
+    // The exact lights first: finish() sums the point's first exactEntries connections apart.
+    const std::size_t before = queue.size();
+    const auto exactTarget = std::uint32_t(set.direct.size() + set.indirect.size());
+    for (std::size_t k = 0; k < set.exact.size(); ++k)
+        connectLight(x, set.exact[k], exactTarget + std::uint32_t(k), 1.0f,
+                     pending.continuation && x.brdf.hasGlossy(), origin, residual, queue);
+    pending.exactEntries = std::uint32_t(queue.size() - before);
     pending.indirectFromMethod =
         queueConnections(x, set, pending.continuation && glossy, residual, queue);
     return pending;
@@ -143,7 +151,9 @@ EndPointLight EndPointShader::finishAt(const ShadingPoint& x, const LightingSet&
                                        const ConnectionBound* residual, const Pending& pending,
                                        const ShadowQueue& queue, RayCounters& counters) const {
     Sums sums;
-    queue.sum(pending.point, sums.irradiance, sums.glossy);
+    glm::vec3 sharpIrradiance(0.0f), sharpGlossy(0.0f);
+    queue.sum(pending.point, pending.exactEntries, sharpIrradiance, sharpGlossy, sums.irradiance,
+              sums.glossy);
     // Lambertian indirect light from the method's records (instant caching, photon map).
     if (pending.indirectFromMethod)
         sums.irradiance += set.indirectIrradiance->irradiance(x.position, x.faceNormal, counters);
@@ -152,7 +162,33 @@ EndPointLight EndPointShader::finishAt(const ShadingPoint& x, const LightingSet&
     const bool glossy = x.brdf.hasGlossy();
     gatherPhotons(x, set, glossy && !pending.continuation, residual, sums);
     if (pending.continuation) continueFrom(x, set, *random, depth, residual, sums, counters);
-    return {sums.irradiance * kInvPi, sums.glossy};
+    return {sums.irradiance * kInvPi, sums.glossy, sharpIrradiance * kInvPi, sharpGlossy};
+}
+
+void EndPointShader::connectLight(const ShadingPoint& x, const Vpl& v, std::uint32_t target,
+                                  float lightSamples, bool mis, glm::vec3 origin,
+                                  const ConnectionBound* residual, ShadowQueue& queue) const {
+    // Direct light: not bounded (its singularity is the light's own size, and for a glossy
+    // lobe the MIS weight takes the light samples out where BRDF sampling is better).
+    const SurfaceBrdf& b = x.brdf;
+    const bool glossy = b.hasGlossy();
+    Link link;
+    if (!linkTo(v, origin, b.normal, x.faceNormal, link)) return;
+    const glm::vec3 w = link.w;
+    const float d = link.d, d2 = link.d2, cosX = link.cosX, cosY = link.cosY;
+    // The lobe toward w once for the sharpness, density and value below.
+    const float lobeW = glossy || residual ? b.lobeToward(w) : 0.0f;
+    const float r = residual ? residualWeight(residual, b.sharpness(w, lobeW)) : 1.0f;
+    if (!(r > 0)) return;
+    const glm::vec3 e = v.power * (cosX * cosY / d2 * r);
+    glm::vec3 g(0.0f);
+    if (glossy) {
+        float weight = 1.0f;
+        if (mis && !v.omni)
+            weight = powerHeuristic(lightSamples * v.areaPdf * d2 / cosY, b.pdf(w, lobeW));
+        g = e * b.glossy(w, lobeW) * weight;
+    }
+    queue.add(target, w, d * (1.0f - kVplShadowShrink), e, g);
 }
 
 bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& set,
@@ -167,26 +203,8 @@ bool EndPointShader::queueConnections(const ShadingPoint& x, const LightingSet& 
         queue.add(target, w, d * (1.0f - kVplShadowShrink), e, g);
     };
 
-    // Direct light: not bounded (its singularity is the light's own size, and for a glossy
-    // lobe the MIS weight takes the light samples out where BRDF sampling is better).
     auto addDirect = [&](const Vpl& v, std::uint32_t target) {
-        Link link;
-        if (!linkTo(v, origin, n, x.faceNormal, link)) return;
-        const glm::vec3 w = link.w;
-        const float d = link.d, d2 = link.d2, cosX = link.cosX, cosY = link.cosY;
-        // The lobe toward w once for the sharpness, density and value below.
-        const float lobeW = glossy || residual ? b.lobeToward(w) : 0.0f;
-        const float r = residual ? residualWeight(residual, b.sharpness(w, lobeW)) : 1.0f;
-        if (!(r > 0)) return;
-        const glm::vec3 e = v.power * (cosX * cosY / d2 * r);
-        glm::vec3 g(0.0f);
-        if (glossy) {
-            float mis = 1.0f;
-            if (misWithContinuation && !v.omni)
-                mis = powerHeuristic(lightSamples * v.areaPdf * d2 / cosY, b.pdf(w, lobeW));
-            g = e * b.glossy(w, lobeW) * mis;
-        }
-        connect(target, w, d, e, g);
+        connectLight(x, v, target, lightSamples, misWithContinuation, origin, residual, queue);
     };
     if (!glossy && residual == nullptr && set.directLanes.laidOut(set.direct.size())) {
         // A Lambertian point tests its light samples many at a time (LambertianLinks) with

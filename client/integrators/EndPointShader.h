@@ -30,8 +30,19 @@ struct ShadingPoint {
 struct EndPointLight {
     glm::vec3 irradiance{0.0f};  ///< E / pi as the Lambertian lobe sees it (times kd: radiance)
     glm::vec3 glossy{0.0f};      ///< radiance reflected by the Phong lobe
+    /// The exact lights' part (LightingSet::exact), apart from the two above: the same in
+    /// every set, so the master need not filter it (the primary point's goes unfiltered).
+    glm::vec3 sharpIrradiance{0.0f};  ///< E / pi
+    glm::vec3 sharpGlossy{0.0f};
 
-    glm::vec3 radiance(const SurfaceBrdf& brdf) const { return brdf.kd * irradiance + glossy; }
+    /// All the light the point sends toward the eye.
+    glm::vec3 radiance(const SurfaceBrdf& brdf) const {
+        return brdf.kd * (irradiance + sharpIrradiance) + glossy + sharpGlossy;
+    }
+    /// The exact lights' part of radiance().
+    glm::vec3 sharpRadiance(const SurfaceBrdf& brdf) const {
+        return brdf.kd * sharpIrradiance + sharpGlossy;
+    }
 };
 
 /// Shades the end point of an eye path (and the points its continuations reach) with the
@@ -73,6 +84,7 @@ class EndPointShader {
         std::uint32_t point = 0;          ///< the point's index in the queue
         bool continuation = false;        ///< whether finish() traces a continuation
         bool indirectFromMethod = false;  ///< Lambertian indirect light from the method's records
+        std::uint32_t exactEntries = 0;   ///< its first queued connections: to exact lights
     };
     Pending queue(const ShadingPoint& x, const LightingSet& set, ShadowQueue& queue) const {
         return queueAt(x, set, true, 0, nullptr, queue);
@@ -107,6 +119,11 @@ class EndPointShader {
     /// records give the Lambertian indirect light instead of the VPLs.
     bool queueConnections(const ShadingPoint& x, const LightingSet& set, bool misWithContinuation,
                           const ConnectionBound* residual, ShadowQueue& queue) const;
+    /// The connection to a light sample v (the set's target `target`), one of `lightSamples`
+    /// at x; for a glossy lobe weighted by MIS against the continuation when `mis`.
+    void connectLight(const ShadingPoint& x, const Vpl& v, std::uint32_t target, float lightSamples,
+                      bool mis, glm::vec3 origin, const ConnectionBound* residual,
+                      ShadowQueue& queue) const;
     /// The connection to the set's indirect VPL j, its contribution scaled by `scale` (a chosen
     /// VPL's weight), from the shadow rays' `origin` at x.
     void connectVpl(const ShadingPoint& x, const LightingSet& set, std::size_t j, float scale,

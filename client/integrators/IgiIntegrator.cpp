@@ -319,6 +319,9 @@ void IgiIntegrator::shadeEnds(PixelPath& p, const LightingSet& set, const Shadow
             result.irradiance = light.irradiance;
             result.reflectance = e.throughput * e.lobes.brdf.kd;
             result.glossy = e.throughput * light.glossy;
+            // The exact lights' light is the same in every set: filtering it would only blur
+            // its shadow edges.
+            result.unfiltered += e.throughput * light.sharpRadiance(e.lobes.brdf);
             result.normal = e.lobes.normal;
             result.depth = e.pathLength;
             result.firstHit = i == 0;
@@ -337,7 +340,8 @@ glm::vec3 IgiIntegrator::irradianceOverPi(glm::vec3 position, glm::vec3 normal,
     p.brdf = SurfaceBrdf::make(glm::vec3(1.0f), glm::vec3(0.0f), 0.0f, normal);
     p.wo = normal;
     p.mirror = normal;
-    return shader_.shadeWithoutContinuation(p, set, counters).irradiance;
+    const EndPointLight light = shader_.shadeWithoutContinuation(p, set, counters);
+    return light.irradiance + light.sharpIrradiance;
 }
 
 }  // namespace igi

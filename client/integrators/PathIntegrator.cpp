@@ -140,7 +140,17 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
 
 glm::vec3 PathIntegrator::directLight(const SurfacePoint& hit, const Lobes& lobes, float uSelect,
                                       glm::vec2 uPoint, RayCounters& counters) const {
-    const LightSample ls = lights_.sampleAt(hit.position, lobes.brdf.normal, uSelect, uPoint);
+    // One light chosen among the receivers' and each exact light (a soft sun's disk point by
+    // the same uPoint: each estimate is unbiased on its own).
+    glm::vec3 sum = lightSample(
+        hit, lobes, lights_.sampleAt(hit.position, lobes.brdf.normal, uSelect, uPoint), counters);
+    for (std::size_t k = 0; k < lights_.exactLights(); ++k)
+        sum += lightSample(hit, lobes, lights_.exactLight(k, uPoint), counters);
+    return sum;
+}
+
+glm::vec3 PathIntegrator::lightSample(const SurfacePoint& hit, const Lobes& lobes,
+                                      const LightSample& ls, RayCounters& counters) const {
     if (!(ls.pdf > 0)) return glm::vec3(0.0f);
     const glm::vec3 shadowOrigin = scene_.offsetOrigin(hit.position, lobes.faceNormal);
     const glm::vec3 toLight = ls.position - shadowOrigin;

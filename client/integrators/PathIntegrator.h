@@ -27,9 +27,13 @@ class PathIntegrator {
   private:
     glm::vec3 tracePath(int x, int y, std::uint32_t pixelIndex, std::uint32_t sampleIndex,
                         RayCounters& counters) const;
-    /// One light sample's contribution through the non-delta BRDF, MIS-weighted.
+    /// The light samples' contribution through the non-delta BRDF, MIS-weighted: one light
+    /// chosen by uSelect, and each exact light (Lights::exactLight).
     glm::vec3 directLight(const SurfacePoint& hit, const Lobes& lobes, float uSelect,
                           glm::vec2 uPoint, RayCounters& counters) const;
+    /// One light sample's contribution, as directLight's.
+    glm::vec3 lightSample(const SurfacePoint& hit, const Lobes& lobes, const LightSample& ls,
+                          RayCounters& counters) const;
 
     const TraceableScene& scene_;
     const Lights& lights_;

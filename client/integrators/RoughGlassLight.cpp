@@ -8,14 +8,13 @@
 #include "shading/ConnectionBound.h"
 
 namespace igi {
+namespace {
 
-glm::vec3 roughGlassLight(const TraceableScene& scene, const Lights& lights,
-                          const SurfacePoint& hit, const Lobes& lobes, float uSelect,
-                          glm::vec2 uPoint, RoughGlassLights which, RayCounters& counters) {
-    // The path tracer's directLight arithmetic with the rough glass's BSDF. No normal for the
-    // choice: light comes through the surface as well (the light tree would otherwise weigh
-    // the lights below it at zero).
-    const LightSample ls = lights.sampleAt(hit.position, glm::vec3(0.0f), uSelect, uPoint);
+// One light sample's light through the rough glass: the path tracer's directLight arithmetic
+// with the rough glass's BSDF.
+glm::vec3 throughRoughGlass(const TraceableScene& scene, const SurfacePoint& hit,
+                            const Lobes& lobes, const LightSample& ls, RoughGlassLights which,
+                            RayCounters& counters) {
     if (!(ls.pdf > 0)) return glm::vec3(0.0f);
     if (which == RoughGlassLights::DeltaOnly && !ls.isPoint) return glm::vec3(0.0f);
     const glm::vec3 toLight0 = ls.position - hit.position;
@@ -43,6 +42,21 @@ glm::vec3 roughGlassLight(const TraceableScene& scene, const Lights& lights,
     const float lightPdf = ls.pdf * d2 / cosY;  // solid angle
     const float weight = powerHeuristic(lightPdf, roughGlassPdf(lobes, w));
     return f * ls.emitted * (cosX * weight / lightPdf);
+}
+
+}  // namespace
+
+glm::vec3 roughGlassLight(const TraceableScene& scene, const Lights& lights,
+                          const SurfacePoint& hit, const Lobes& lobes, float uSelect,
+                          glm::vec2 uPoint, RoughGlassLights which, RayCounters& counters) {
+    // No normal for the choice: light comes through the surface as well (the light tree would
+    // otherwise weigh the lights below it at zero).
+    glm::vec3 sum = throughRoughGlass(
+        scene, hit, lobes, lights.sampleAt(hit.position, glm::vec3(0.0f), uSelect, uPoint), which,
+        counters);
+    for (std::size_t k = 0; k < lights.exactLights(); ++k)
+        sum += throughRoughGlass(scene, hit, lobes, lights.exactLight(k, uPoint), which, counters);
+    return sum;
 }
 
 }  // namespace igi

@@ -48,6 +48,10 @@ struct LightingSet {
     /// With a light tree (Lights::choosesPerPoint) instead of `direct`: the numbers each point
     /// turns into its own light samples (choice, then a point on the chosen light).
     std::vector<glm::vec3> directNumbers;
+    /// One sample of each exact light (Lights::exactLight), which every point connects to
+    /// besides `direct`: its light is the same in every set (a soft sun's disk point aside), so
+    /// it is kept out of the filtered irradiance (EndPointLight::sharp).
+    std::vector<Vpl> exact;
     std::vector<Vpl> indirect;  ///< VPLs from light paths (connections bounded)
     /// With VPLs by importance: how each point chooses among `indirect` (VplChoice); inactive,
     /// every point connects to every one.

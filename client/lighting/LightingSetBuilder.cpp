@@ -189,6 +189,20 @@ std::shared_ptr<const std::vector<CausticPhoton>> LightingSetBuilder::pooledCaus
 
 void LightingSetBuilder::sampleDirect(std::uint32_t frame, std::uint32_t setIndex,
                                       LightingSet& set) const {
+    for (std::size_t k = 0; k < lights_.exactLights(); ++k) {
+        // Each light its own scrambling of the sets' points: the sets of all k together
+        // stratify a soft sun's disk.
+        const auto d = std::uint32_t(2 * k);
+        const glm::vec2 u(
+            Sobol::scrambled(setIndex, 0,
+                             scrambleBits(settings_.seed, frame, SampleStream::ExactLights, d)),
+            Sobol::scrambled(
+                setIndex, 1,
+                scrambleBits(settings_.seed, frame, SampleStream::ExactLights, d + 1)));
+        const LightSample s = lights_.exactLight(k, u);
+        if (s.pdf > 0) set.exact.push_back(directLightVpl(s, scene_, 1));
+    }
+    if (!lights_.receiversChoose()) return;
     const auto n = std::uint32_t(std::max(0, settings_.directSamples));
     std::uint32_t scramble[3];
     for (std::uint32_t d = 0; d < 3; ++d)
@@ -205,7 +219,7 @@ void LightingSetBuilder::sampleDirect(std::uint32_t frame, std::uint32_t setInde
             set.directNumbers.push_back(u);
             continue;
         }
-        const LightSample s = lights_.sample(u.x, {u.y, u.z});
+        const LightSample s = lights_.sampleForReceivers(u.x, {u.y, u.z});
         if (s.pdf > 0) set.direct.push_back(directLightVpl(s, scene_, int(n)));
     }
 }

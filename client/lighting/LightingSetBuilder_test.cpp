@@ -61,7 +61,9 @@ TEST(LightingSetBuilder, IndirectVplCountFollowsTheWantedNumber) {
         planned += builder.survivors(d);
     EXPECT_GE(planned, 18u);
     EXPECT_EQ(builder.build(0, 0).indirect.size(), planned);
-    EXPECT_EQ(builder.build(0, 0).direct.size(), 4u);
+    // The lamp is the scene's one light and an exact one: one sample, none chosen.
+    EXPECT_EQ(builder.build(0, 0).exact.size(), 1u);
+    EXPECT_EQ(builder.build(0, 0).direct.size(), 0u);
 }
 
 // With roulette the paper's walk is unchanged up to its length (the same VPLs, in the same

@@ -38,6 +38,31 @@ Corners cornersOf(const TraceableScene::WorldTriangle& t) {
     return std::min({key(0), key(1), key(2)});
 }
 
+// A sun of 1e5 lux beside a room's lamps would take nearly every choice by power (or the lamps
+// every one of a dim sky's): when directional lights share a choice with others, half the choices
+// are by power and half uniform over the lights that take part, so none is starved. `part` says
+// which lights take part (the others get 0).
+std::vector<float> choiceWeights(std::vector<float> power, const std::vector<bool>& part,
+                                 const std::vector<bool>& parallel) {
+    bool directional = false, finite = false;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < power.size(); ++i) {
+        if (!part[i]) {
+            power[i] = 0;
+            continue;
+        }
+        ++n;
+        (parallel[i] ? directional : finite) = true;
+    }
+    if (!directional || !finite) return power;
+    double total = 0;
+    for (float w : power) total += w;
+    if (total > 0)
+        for (std::size_t i = 0; i < power.size(); ++i)
+            if (part[i]) power[i] = float(0.5 * double(power[i]) / total + 0.5 / double(n));
+    return power;
+}
+
 EmissiveTexture emissiveTextureOf(const TraceableScene& traceable,
                                   const TraceableScene::WorldTriangle& t, const Material& m) {
     return EmissiveTexture(traceable.textures()[m.emissionTexture], m.emissionUv,
@@ -105,7 +130,6 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
         glm::all(glm::lessThanEqual(boxLo_, boxHi_)) && std::isfinite(glm::length(boxHi_ - boxLo_));
     const float sunDistance = kSunDistance * radius_;
     std::vector<float> treePower = power;  // a directional light's is its far point's
-    std::size_t finite = emitters_.size();
     for (const PunctualLight& p : punctualLights) {
         if (!p.on) continue;
         Emitter e;
@@ -115,14 +139,12 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
         if (p.kind == LightKind::Point) {
             e.kind = Kind::Point;
             power.push_back(4.0f * kPi * luminance(p.intensity));
-            ++finite;
         } else if (p.kind == LightKind::Spot) {
             e.kind = Kind::Spot;
             e.cosOuter = spotCosOuter(p);
             e.spotScale = spotScale(p);
             // At most the power of its outer cone at full intensity.
             power.push_back(2.0f * kPi * (1.0f - e.cosOuter) * luminance(p.intensity));
-            ++finite;
         } else {
             e.kind = Kind::Directional;
             e.oneMinusCos = sunOneMinusCos(p.angleDeg);
@@ -153,21 +175,33 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
         // For the tree: a plane's irradiance under it (pi L_mean) at the far sphere's distance.
         treePower.push_back(4.0f * kPi * kPi * mean * sunDistance * sunDistance);
     }
-    // A sun of 1e5 lux beside a room's lamps would take nearly every light path (or the lamps
-    // every one of a dim sky's): when directional lights share the scene with others, half the
-    // choices are by power and half uniform over the lights, so none is starved.
-    if (hasDirectional_ && finite > 0) {
-        double total = 0;
-        for (float w : power) total += w;
-        if (total > 0)
-            for (float& w : power) w = float(0.5 * double(w) / total + 0.5 / double(power.size()));
-    }
-    distribution_ = Distribution1D(power);
-    if (!usesLightTree(sampling, emitters_.size()) || distribution_.empty()) return;
-    std::vector<LightTree::Light> bounds(emitters_.size());
+    std::vector<bool> parallel(emitters_.size()), all(emitters_.size(), true);
+    std::size_t punctual = 0;
     for (std::size_t i = 0; i < emitters_.size(); ++i) {
+        parallel[i] =
+            emitters_[i].kind == Kind::Directional || emitters_[i].kind == Kind::Environment;
+        if (emitters_[i].isPoint()) ++punctual;
+    }
+    // Light paths choose among every light.
+    distribution_ = Distribution1D(choiceWeights(power, all, parallel));
+    // A few point, spot and sun lights are each a shadow ray of every receiver (exactLight):
+    // receivers choose among the others.
+    std::vector<bool> chosen = all;
+    if (punctual <= kMaxExactLights)
+        for (std::size_t i = 0; i < emitters_.size(); ++i)
+            if (emitters_[i].isPoint()) {
+                chosen[i] = false;
+                exact_.push_back(std::uint32_t(i));
+            }
+    for (const Sun& sun : suns_) exactSun_.push_back(!chosen[sun.emitter]);
+    receivers_ = Distribution1D(choiceWeights(power, chosen, parallel));
+    if (!usesLightTree(sampling, emitters_.size()) || receivers_.empty()) return;
+    std::vector<LightTree::Light> bounds;
+    for (std::size_t i = 0; i < emitters_.size(); ++i) {
+        if (!chosen[i]) continue;
+        treeEmitter_.push_back(std::uint32_t(i));
         const Emitter& e = emitters_[i];
-        LightTree::Light& b = bounds[i];
+        LightTree::Light& b = bounds.emplace_back();
         // A directional light is its far point (LightSample) in every direction it may come
         // from: the tree weighs it by the irradiance it gives, as a point light's.
         const glm::vec3 p0 =
@@ -182,7 +216,19 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
         b.omni = e.isPoint();
         b.power = treePower[i];
     }
+    for (std::size_t t = 0; t < treeEmitter_.size(); ++t)
+        emitterTree_.emplace(treeEmitter_[t], std::uint32_t(t));
     tree_ = LightTree(bounds);
+}
+
+float Lights::receiverSelection(glm::vec3 p, glm::vec3 n, std::uint32_t emitter) const {
+    if (!choosesPerPoint()) return receivers_.empty() ? 0.0f : receivers_.pdf(emitter);
+    const auto it = emitterTree_.find(emitter);
+    return it == emitterTree_.end() ? 0.0f : tree_.probability(p, n, it->second);
+}
+
+LightSample Lights::exactLight(std::size_t k, glm::vec2 uPoint) const {
+    return pointOn(exact_[k], 1.0f, uPoint);
 }
 
 LightSample Lights::sample(float uSelect, glm::vec2 uPoint, float* uRemapped) const {
@@ -191,13 +237,19 @@ LightSample Lights::sample(float uSelect, glm::vec2 uPoint, float* uRemapped) co
     return pointOn(i, distribution_.pdf(i), uPoint);
 }
 
+LightSample Lights::sampleForReceivers(float uSelect, glm::vec2 uPoint) const {
+    if (receivers_.empty()) return {};
+    const std::size_t i = receivers_.sample(uSelect);
+    return pointOn(i, receivers_.pdf(i), uPoint);
+}
+
 LightSample Lights::sampleAt(glm::vec3 p, glm::vec3 n, float uSelect, glm::vec2 uPoint,
                              LightTree::Memo* memo) const {
-    if (!choosesPerPoint()) return sample(uSelect, uPoint);
+    if (!choosesPerPoint()) return sampleForReceivers(uSelect, uPoint);
     std::uint32_t i = 0;
     float selection = 0;
     if (!tree_.sample(p, n, uSelect, i, selection, memo)) return {};
-    return pointOn(i, selection, uPoint);
+    return pointOn(treeEmitter_[i], selection, uPoint);
 }
 
 LightSample Lights::pointOn(std::size_t i, float select, glm::vec2 uPoint) const {
@@ -269,21 +321,21 @@ LightSample Lights::pointOn(std::size_t i, float select, glm::vec2 uPoint) const
 glm::vec3 Lights::sunsSeenByBrdf(glm::vec3 p, glm::vec3 n, glm::vec3 toSky, float brdfPdf,
                                  float lightSamples) const {
     glm::vec3 sum(0.0f);
-    for (const Sun& sun : suns_) {
+    for (std::size_t k = 0; k < suns_.size(); ++k) {
+        const Sun& sun = suns_[k];
         if (!sun.disk.contains(toSky)) continue;
-        const float selection = choosesPerPoint() ? tree_.probability(p, n, sun.emitter)
-                                                  : distribution_.pdf(sun.emitter);
+        // An exact sun has one light sample of its own at p; another one of the receivers'.
+        const float samples = exactSun_[k] ? 1.0f : lightSamples;
+        const float selection = exactSun_[k] ? 1.0f : receiverSelection(p, n, sun.emitter);
         const float lightPdf = selection / sun.disk.solidAngle();
-        sum += sun.disk.radiance * powerHeuristic(brdfPdf, lightSamples * lightPdf);
+        sum += sun.disk.radiance * powerHeuristic(brdfPdf, samples * lightPdf);
     }
     return sum;
 }
 
 float Lights::environmentPdfAt(glm::vec3 p, glm::vec3 n, glm::vec3 toSky) const {
     if (!environment_) return 0.0f;
-    const float selection = choosesPerPoint() ? tree_.probability(p, n, environmentIndex_)
-                                              : distribution_.pdf(environmentIndex_);
-    return selection * environment_->pdf(toSky);
+    return receiverSelection(p, n, environmentIndex_) * environment_->pdf(toSky);
 }
 
 glm::vec3 Lights::diskOrigin(glm::vec3 direction, glm::vec2 u) const {
@@ -325,9 +377,7 @@ float Lights::areaPdfAt(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 p,
                         glm::vec3 n) const {
     const auto it = triangleToEmitter_.find(triangleKey(mesh, triangle));
     if (it == triangleToEmitter_.end()) return 0;
-    const float selection =
-        choosesPerPoint() ? tree_.probability(p, n, it->second) : distribution_.pdf(it->second);
-    return selection / emitters_[it->second].area;
+    return receiverSelection(p, n, it->second) / emitters_[it->second].area;
 }
 
 Vpl directLightVpl(const LightSample& s, const TraceableScene& scene, int samples) {

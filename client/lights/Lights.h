@@ -52,12 +52,25 @@ struct LightSample {
 /// How far (in scene radii) past the scene a directional light's sample sits.
 constexpr float kSunDistance = 1e5f;
 
+/// Up to this many point, spot and sun lights in a scene are exact lights (Lights::exactLight):
+/// each is one shadow ray of every receiving point, not chosen among the others. More, and
+/// they are chosen with the rest (a shadow ray each per point would cost more than it saves).
+constexpr std::size_t kMaxExactLights = 4;
+
 /// Every light source of a scene: emissive triangles (from Ke materials and quad lights; zero-area
 /// ones and those whose emissive texture is black there skipped, a face listed twice counted
 /// once) and point lights. Light paths leave them by
 /// emitted power; a point that receives light chooses them either by power too or, with many
 /// lights, by what each could give it there (a LightTree), so that its few samples go to the
 /// lights that matter to it.
+///
+/// Exact lights: when a scene has at most kMaxExactLights point, spot and sun lights, a
+/// receiving point does not choose them; it sends one shadow ray to each (exactLight), and
+/// chooses among the other lights only. A delta light's one sample is its exact light, so a
+/// receiver's light from it is then the same in every set: the interleaved sets' neighbouring
+/// pixels do not differ by how many of their samples it drew (with a sun and a sky, 3 or 4 of
+/// 4: a tenth of the sunlight from pixel to pixel), which the discontinuity buffer would have
+/// to average across shadow edges. Integrators keep that light out of the filtered irradiance.
 class Lights {
   public:
     /// The emissive triangles of `traceable` (quad lights included) and the point lights that
@@ -75,11 +88,20 @@ class Lights {
     /// given, receives uSelect rescaled within the chosen light: a fresh uniform number.
     LightSample sample(float uSelect, glm::vec2 uPoint, float* uRemapped = nullptr) const;
 
+    /// The same among the lights receivers choose (all but the exact lights), by power.
+    LightSample sampleForReceivers(float uSelect, glm::vec2 uPoint) const;
     /// The same for light arriving at p (unit normal n, front side only): by the tree when
-    /// choosesPerPoint(), else as sample().
+    /// choosesPerPoint(), else as sampleForReceivers(). Exact lights are never chosen.
     /// `memo` (for several samples at one p and n) saves weighing the tree's nodes again.
     LightSample sampleAt(glm::vec3 p, glm::vec3 n, float uSelect, glm::vec2 uPoint,
                          LightTree::Memo* memo = nullptr) const;
+
+    /// How many exact lights there are, and the k-th's sample (selection 1; uPoint places it
+    /// on a soft sun's disk).
+    std::size_t exactLights() const { return exact_.size(); }
+    LightSample exactLight(std::size_t k, glm::vec2 uPoint) const;
+    /// Whether receivers have lights to choose among (besides the exact ones).
+    bool receiversChoose() const { return !receivers_.empty(); }
 
     /// Area-measure density with which sampleAt(p, n) picks a point on the emissive triangle
     /// (mesh, triangle), for multiple importance sampling; 0 if it is not a light.
@@ -106,7 +128,8 @@ class Lights {
     bool hasSuns() const { return !suns_.empty(); }
     /// The radiance of the suns' disks that a direction sampled from a BRDF at p (normal n)
     /// with solid-angle density `brdfPdf` sees along the unit `toSky`, each weighted by the
-    /// power heuristic against the `lightSamples` light samples at p that could have chosen it.
+    /// power heuristic against the `lightSamples` light samples at p that could have chosen it
+    /// (an exact sun: against its own one sample).
     glm::vec3 sunsSeenByBrdf(glm::vec3 p, glm::vec3 n, glm::vec3 toSky, float brdfPdf,
                              float lightSamples) const;
 
@@ -150,10 +173,16 @@ class Lights {
     };
 
     LightSample pointOn(std::size_t emitter, float selection, glm::vec2 uPoint) const;
+    /// The probability with which sampleAt(p, n) chooses `emitter` (0 for an exact light).
+    float receiverSelection(glm::vec3 p, glm::vec3 n, std::uint32_t emitter) const;
 
     std::vector<Emitter> emitters_;
-    Distribution1D distribution_;
-    LightTree tree_;  ///< empty when receivers choose by power
+    Distribution1D distribution_;  ///< light paths' choice: every light
+    Distribution1D receivers_;     ///< receivers' choice by power: every light but the exact ones
+    std::vector<std::uint32_t> exact_;  ///< the exact lights' emitters
+    LightTree tree_;  ///< empty when receivers choose by power; over the receivers' lights
+    std::vector<std::uint32_t> treeEmitter_;  ///< the tree's light t is emitter treeEmitter_[t]
+    std::unordered_map<std::uint32_t, std::uint32_t> emitterTree_;
     std::unordered_map<std::uint64_t, std::uint32_t> triangleToEmitter_;
     /// A soft sun's disk and its emitter (for its selection probability).
     struct Sun {
@@ -161,6 +190,7 @@ class Lights {
         std::uint32_t emitter = 0;
     };
     std::vector<Sun> suns_;
+    std::vector<bool> exactSun_;                   ///< per sun: whether it is an exact light
     const EnvironmentMap* environment_ = nullptr;  ///< when the scene has a sky
     std::uint32_t environmentIndex_ = 0;           ///< its emitter
     glm::vec3 center_{0.0f};                       ///< the scene's bounding sphere

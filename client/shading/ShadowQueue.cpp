@@ -118,6 +118,20 @@ void ShadowQueue::trace(const TraceableScene& scene, RayCounters& counters) {
 void ShadowQueue::sum(std::uint32_t point, glm::vec3& irradiance, glm::vec3& glossy) const {
     const std::size_t begin = pointBegin_[point];
     const std::size_t end = point + 1 < pointBegin_.size() ? pointBegin_[point + 1] : size_;
+    sumRange(begin, end, irradiance, glossy);
+}
+
+void ShadowQueue::sum(std::uint32_t point, std::uint32_t leading, glm::vec3& leadIrradiance,
+                      glm::vec3& leadGlossy, glm::vec3& irradiance, glm::vec3& glossy) const {
+    const std::size_t begin = pointBegin_[point];
+    const std::size_t end = point + 1 < pointBegin_.size() ? pointBegin_[point + 1] : size_;
+    const std::size_t split = std::min(end, begin + leading);
+    sumRange(begin, split, leadIrradiance, leadGlossy);
+    sumRange(split, end, irradiance, glossy);
+}
+
+void ShadowQueue::sumRange(std::size_t begin, std::size_t end, glm::vec3& irradiance,
+                           glm::vec3& glossy) const {
     // Without a branch per entry (whether a ray was blocked is unpredictable): a blocked
     // entry adds +0, which leaves every lane's sum as it was (a sum that starts at +0 and adds
     // only unblocked values is never -0). Lane by lane the additions are the scalar ones.

@@ -75,6 +75,10 @@ class ShadowQueue {
     void trace(const TraceableScene& scene, RayCounters& counters);
     /// The point's unblocked contributions, each added in the order queued, starting from zero.
     void sum(std::uint32_t point, glm::vec3& irradiance, glm::vec3& glossy) const;
+    /// The same in two parts: the point's first `leading` entries into leadIrradiance and
+    /// leadGlossy, the rest into irradiance and glossy.
+    void sum(std::uint32_t point, std::uint32_t leading, glm::vec3& leadIrradiance,
+             glm::vec3& leadGlossy, glm::vec3& irradiance, glm::vec3& glossy) const;
 
     std::size_t size() const { return size_; }
     std::size_t points() const { return pointBegin_.size(); }
@@ -92,6 +96,9 @@ class ShadowQueue {
     }
     /// Indices of the entries sorted by target (stable; own targets last): order_.
     void sortByTarget();
+    /// Entries [begin, end)'s unblocked contributions, added in order from zero.
+    void sumRange(std::size_t begin, std::size_t end, glm::vec3& irradiance,
+                  glm::vec3& glossy) const;
     template <int N>
     void traceAs(const TraceableScene& scene, bool sorted, RayCounters& counters);
 

@@ -20,6 +20,7 @@ enum class SampleStream : std::uint32_t {
     StableVplPaths = 9,          ///< instant caching's light paths, the same in every frame
     VplChoice = 10,              ///< the offset of each set's choice of VPLs (VplChoice)
     LightEdgeRays = 11,          ///< the eye rays that gather the light seen at its edges
+    ExactLights = 12,            ///< each set's point on each exact light (a soft sun's disk)
 };
 
 /// The random bit vector for one dimension of one stream in one frame. Every client derives the
