@@ -161,6 +161,11 @@ def burley(r, tag, scene_file, res):
     return b
 
 
+def variant_rows(results, cells):
+    """A table row per scene with Cycles variants (burley's figures): `cells(figures)` after its name."""
+    return [f"| {tag} | " + " | ".join(cells(r["lambert"])) + " |" for tag, r in results.items() if r.get("lambert")]
+
+
 def markdown(results, a, command, started, seconds):
     pct = lm.pct
     m = machine()
@@ -206,12 +211,10 @@ def markdown(results, a, command, started, seconds):
               "| scene | Cycles Burley / Lambert | relMSE between them (two independent references' noise) | IGI / Cycles-Lambert | "
               "path / Cycles-Lambert | relMSE IGI against Cycles-Lambert |",
               "|---|---|---|---|---|---|"]
-    for tag, r in results.items():
-        b = r.get("lambert")
-        if b:
-            lines.append(f"| {tag} | {b['ratio_burley_lambert']:.4f} | {b['relmse_burley_lambert']:.3g} "
-                         f"({b['noise_relmse']:.2g}) | {b['ratio_igi_lambert']:.4f} | {b['ratio_path_lambert']:.4f} | "
-                         f"{b['relmse_igi_lambert']:.3g} |")
+    lines += variant_rows(results, lambda b: [f"{b['ratio_burley_lambert']:.4f}",
+                                              f"{b['relmse_burley_lambert']:.3g} ({b['noise_relmse']:.2g})",
+                                              f"{b['ratio_igi_lambert']:.4f}", f"{b['ratio_path_lambert']:.4f}",
+                                              f"{b['relmse_igi_lambert']:.3g}"])
     lines += ["", "**Blender's diffuse against the specification's.** Principled (Blender 3.x) adds its "
               "specular lobe on top of an unweighted Burley diffuse; the specification weights a Lambertian "
               "diffuse by 1 - F(v.h) (ours by the constant 1 - f0: \"Where it departs from the "
@@ -221,12 +224,9 @@ def markdown(results, a, command, started, seconds):
               "| scene | Cycles Principled / spec diffuse | relMSE between them (the diffuse part) | IGI / Cycles-spec | "
               "path / Cycles-spec | relMSE IGI against Cycles-spec | relMSE path against Cycles-spec |",
               "|---|---|---|---|---|---|---|"]
-    for tag, r in results.items():
-        b = r.get("lambert")
-        if b:
-            lines.append(f"| {tag} | {b['ratio_principled_spec']:.4f} | {b['relmse_principled_spec']:.3g} | "
-                         f"{b['ratio_igi_spec']:.4f} | {b['ratio_path_spec']:.4f} | {b['relmse_igi_spec']:.3g} | "
-                         f"{b['relmse_path_spec']:.3g} |")
+    lines += variant_rows(results, lambda b: [f"{b['ratio_principled_spec']:.4f}", f"{b['relmse_principled_spec']:.3g}",
+                                              f"{b['ratio_igi_spec']:.4f}", f"{b['ratio_path_spec']:.4f}",
+                                              f"{b['relmse_igi_spec']:.3g}", f"{b['relmse_path_spec']:.3g}"])
     lines += ["", "Not compared: " + "; ".join(f"**{k}**: {v}" for k, v in SKIPPED.items()), "",
               "Time (seconds of rendering as each renderer reports it, wall clock on the shared machine):", "",
               "| scene | IGI (frames) | our path tracer (spp) | Cycles 256 spp | Cycles reference | Cycles Lambert variant | Cycles spec variant |",

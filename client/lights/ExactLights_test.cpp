@@ -19,16 +19,6 @@ using testing::InProcessRenderer;
 
 constexpr float kAlbedo = 0.5f;
 
-PunctualLight sunAlong(glm::vec3 direction, float irradiance, float angleDeg) {
-    PunctualLight l;
-    l.name = "sun";
-    l.kind = LightKind::Directional;
-    l.direction = glm::normalize(direction);
-    l.intensity = glm::vec3(irradiance);
-    l.angleDeg = angleDeg;
-    return l;
-}
-
 // A diffuse floor (facing +y) seen straight from above, under a delta sun 60 degrees from the
 // zenith and a constant sky: the floor's only light. The camera sees nothing but the floor.
 Scene floorUnderSunAndSky() {
@@ -39,7 +29,7 @@ Scene floorUnderSunAndSky() {
     scene.image = {12, 9, 0};
     scene.render.causticPhotons = 0;
     const float theta = glm::radians(60.0f);
-    scene.punctualLights.push_back(sunAlong({std::sin(theta), -std::cos(theta), 0.0f}, 3.0f, 0.0f));
+    scene.punctualLights.push_back(testing::sun({std::sin(theta), -std::cos(theta), 0.0f}, 3.0f));
     scene.environment.radiance = glm::vec3(0.2f);
     return scene;
 }

@@ -21,15 +21,7 @@ using testing::InProcessRenderer;
 
 constexpr float kAlbedo = 0.5f;
 
-PunctualLight sun(glm::vec3 direction, float irradiance, float angleDeg = 0.0f) {
-    PunctualLight l;
-    l.name = "sun";
-    l.kind = LightKind::Directional;
-    l.direction = glm::normalize(direction);
-    l.intensity = glm::vec3(irradiance);
-    l.angleDeg = angleDeg;
-    return l;
-}
+using testing::sun;
 
 PunctualLight spot(glm::vec3 position, glm::vec3 direction, float intensity, float innerDeg,
                    float outerDeg) {

@@ -73,6 +73,18 @@ inline Mesh makeQuad(glm::vec3 corner, glm::vec3 e1, glm::vec3 e2, std::uint32_t
     return mesh;
 }
 
+/// A directional light named "sun" shining along `direction` (normalized here) with this grey
+/// irradiance, a disk of `angleDeg` (0: a delta).
+inline PunctualLight sun(glm::vec3 direction, float irradiance, float angleDeg = 0.0f) {
+    PunctualLight l;
+    l.name = "sun";
+    l.kind = LightKind::Directional;
+    l.direction = glm::normalize(direction);
+    l.intensity = glm::vec3(irradiance);
+    l.angleDeg = angleDeg;
+    return l;
+}
+
 inline Material diffuse(glm::vec3 albedo) {
     Material m;
     m.name = "diffuse";
