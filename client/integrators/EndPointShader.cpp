@@ -139,7 +139,7 @@ EndPointShader::Pending EndPointShader::queueAt(const ShadingPoint& x, const Lig
     const auto exactTarget = std::uint32_t(set.direct.size() + set.indirect.size());
     for (std::size_t k = 0; k < set.exact.size(); ++k)
         connectLight(x, set.exact[k], exactTarget + std::uint32_t(k), 1.0f,
-                     pending.continuation && x.brdf.hasGlossy(), origin, residual, queue);
+                     pending.continuation && glossy, origin, residual, queue);
     pending.exactEntries = std::uint32_t(queue.size() - before);
     pending.indirectFromMethod =
         queueConnections(x, set, pending.continuation && glossy, residual, queue);

@@ -193,7 +193,7 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
                 chosen[i] = false;
                 exact_.push_back(std::uint32_t(i));
             }
-    for (const Sun& sun : suns_) exactSun_.push_back(!chosen[sun.emitter]);
+    for (Sun& sun : suns_) sun.exact = !chosen[sun.emitter];
     receivers_ = Distribution1D(choiceWeights(power, chosen, parallel));
     if (!usesLightTree(sampling, emitters_.size()) || receivers_.empty()) return;
     std::vector<LightTree::Light> bounds;
@@ -216,15 +216,16 @@ Lights::Lights(const TraceableScene& traceable, const std::vector<PunctualLight>
         b.omni = e.isPoint();
         b.power = treePower[i];
     }
+    emitterTree_.assign(emitters_.size(), kNotInTree);
     for (std::size_t t = 0; t < treeEmitter_.size(); ++t)
-        emitterTree_.emplace(treeEmitter_[t], std::uint32_t(t));
+        emitterTree_[treeEmitter_[t]] = std::uint32_t(t);
     tree_ = LightTree(bounds);
 }
 
 float Lights::receiverSelection(glm::vec3 p, glm::vec3 n, std::uint32_t emitter) const {
     if (!choosesPerPoint()) return receivers_.empty() ? 0.0f : receivers_.pdf(emitter);
-    const auto it = emitterTree_.find(emitter);
-    return it == emitterTree_.end() ? 0.0f : tree_.probability(p, n, it->second);
+    const std::uint32_t t = emitterTree_[emitter];
+    return t == kNotInTree ? 0.0f : tree_.probability(p, n, t);
 }
 
 LightSample Lights::exactLight(std::size_t k, glm::vec2 uPoint) const {
@@ -321,12 +322,11 @@ LightSample Lights::pointOn(std::size_t i, float select, glm::vec2 uPoint) const
 glm::vec3 Lights::sunsSeenByBrdf(glm::vec3 p, glm::vec3 n, glm::vec3 toSky, float brdfPdf,
                                  float lightSamples) const {
     glm::vec3 sum(0.0f);
-    for (std::size_t k = 0; k < suns_.size(); ++k) {
-        const Sun& sun = suns_[k];
+    for (const Sun& sun : suns_) {
         if (!sun.disk.contains(toSky)) continue;
         // An exact sun has one light sample of its own at p; another one of the receivers'.
-        const float samples = exactSun_[k] ? 1.0f : lightSamples;
-        const float selection = exactSun_[k] ? 1.0f : receiverSelection(p, n, sun.emitter);
+        const float samples = sun.exact ? 1.0f : lightSamples;
+        const float selection = sun.exact ? 1.0f : receiverSelection(p, n, sun.emitter);
         const float lightPdf = selection / sun.disk.solidAngle();
         sum += sun.disk.radiance * powerHeuristic(brdfPdf, samples * lightPdf);
     }

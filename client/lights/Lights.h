@@ -182,15 +182,19 @@ class Lights {
     std::vector<std::uint32_t> exact_;  ///< the exact lights' emitters
     LightTree tree_;  ///< empty when receivers choose by power; over the receivers' lights
     std::vector<std::uint32_t> treeEmitter_;  ///< the tree's light t is emitter treeEmitter_[t]
-    std::unordered_map<std::uint32_t, std::uint32_t> emitterTree_;
+    /// An emitter's light in the tree, or kNotInTree (an exact light): a vector, not a map,
+    /// since MIS weights look it up for every sampled direction that finds a light.
+    static constexpr std::uint32_t kNotInTree = 0xFFFFFFFFu;
+    std::vector<std::uint32_t> emitterTree_;
     std::unordered_map<std::uint64_t, std::uint32_t> triangleToEmitter_;
-    /// A soft sun's disk and its emitter (for its selection probability).
+    /// A soft sun's disk and its emitter (for its selection probability), and whether it is
+    /// an exact light (then its one sample is what BRDF sampling is weighed against).
     struct Sun {
         SunDisk disk;
         std::uint32_t emitter = 0;
+        bool exact = false;
     };
     std::vector<Sun> suns_;
-    std::vector<bool> exactSun_;                   ///< per sun: whether it is an exact light
     const EnvironmentMap* environment_ = nullptr;  ///< when the scene has a sky
     std::uint32_t environmentIndex_ = 0;           ///< its emitter
     glm::vec3 center_{0.0f};                       ///< the scene's bounding sphere
