@@ -245,6 +245,36 @@ if DIFFUSE not in ("principled", "lambert", "spec"):
     sys.exit(f"cycles_render: IGI_CYCLES_DIFFUSE={DIFFUSE!r}: expected principled, lambert or spec")
 
 
+# "bytes" (default): 8-bit sRGB textures as Blender loads them, which Cycles interpolates in
+# sRGB and only then decodes (svm_image: color_srgb_to_linear after the lookup); "linear"
+# (IGI_CYCLES_TEXTURES=linear): each such image decoded to linear floats first
+# (_linear_texture), so that Cycles filters linear values as the glTF specification asks and as
+# we do. Across a sharp edge of texels the two differ: sRGB interpolation darkens the blend.
+TEXTURES = os.environ.get("IGI_CYCLES_TEXTURES", "bytes")
+if TEXTURES not in ("bytes", "linear"):
+    sys.exit(f"cycles_render: IGI_CYCLES_TEXTURES={TEXTURES!r}: expected bytes or linear")
+
+
+def _linear_texture(image):
+    """A float copy of the 8-bit sRGB `image` with its colour decoded to linear (alpha kept), in
+    the "Linear" colour space, or None when `image` is not 8-bit sRGB."""
+    import numpy
+
+    if image.is_float or image.colorspace_settings.name != "sRGB" or image.size[0] == 0:
+        return None
+    w, h = image.size
+    px = numpy.empty(w * h * 4, dtype=numpy.float32)
+    image.pixels.foreach_get(px)  # the bytes / 255, not colour managed
+    px = px.reshape(-1, 4)
+    c = px[:, :3]
+    px[:, :3] = numpy.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    out = bpy.data.images.new(image.name + " (linear)", w, h, alpha=True, float_buffer=True)
+    out.colorspace_settings.name = "Linear"
+    out.alpha_mode = "CHANNEL_PACKED"
+    out.pixels.foreach_set(px.ravel())
+    return out
+
+
 def _source(socket):
     """The socket linked into `socket`, or None."""
     return socket.links[0].from_socket if socket.is_linked else None
@@ -353,6 +383,17 @@ def _import_gltf(model):
             # a Cycles image texture whose Alpha output is unused returns its colour premultiplied
             # (black where alpha is 0) unless the image's alpha is "channel packed".
             image.alpha_mode = "CHANNEL_PACKED"
+    if TEXTURES == "linear":
+        swapped = {}
+        for image in [i for i in bpy.data.images if i not in images_before]:
+            linear = _linear_texture(image)
+            if linear is not None:
+                swapped[image] = linear
+        for material in bpy.data.materials:
+            for node in (material.node_tree.nodes if material.use_nodes else []):
+                if node.type == "TEX_IMAGE" and node.image in swapped:
+                    node.image = swapped[node.image]
+        print(f"cycles: {len(swapped)} sRGB textures decoded to linear floats before filtering", flush=True)
     seen = set()
     root = bpy.data.objects.new(model["name"] + "_root", None)
     bpy.context.scene.collection.objects.link(root)
