@@ -296,8 +296,9 @@ void TraceableScene::intersectPacket(const glm::vec3* origins, const glm::vec3* 
                 vertices[i] = fillGeometry(hit.geomID[i], hit.instID[0][i], hit.primID[i], hit.u[i],
                                            hit.v[i], p.packet.ray.tfar[i], hits[i]);
         }
-        for (int i = 0; i < count; ++i)
-            if (found[i]) prefetchTextures(vertices[i], hits[i]);
+        if (!textures_->empty())  // a scene without textures has nothing to ask the memory for
+            for (int i = 0; i < count; ++i)
+                if (found[i]) prefetchTextures(vertices[i], hits[i]);
         for (int i = 0; i < count; ++i)
             if (found[i]) fillTextures(vertices[i], hits[i]);
     };
