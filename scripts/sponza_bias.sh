@@ -42,13 +42,7 @@ variants["sky"] = dict(base, lights=[])  # (any scene: SCENE=...)
 for name, s in variants.items():
     json.dump(s, open(os.path.join(out, f"sponza-{name}.json"), "w"), indent=1)
 PY
-render() {  # scene out frames extra...
-    local scene=$1 out=$2 frames=$3; shift 3
-    [ -s "$out" ] && return 0
-    nice -n 19 "$BIN/igi-master" --scene "$scene" --allow-outside-paths --local-clients 1 \
-        --width "$W" --height "$H" --frames "$frames" --output "$out" --log-level warn \
-        --listen 127.0.0.1:0 "$@" > "${out%.exr}.log" 2>&1
-}
+. "$ROOT/scripts/render_small.sh"
 bias() {  # image reference: "mean(image) / mean(reference) - 1, in %" and "relMSE"
     "$BIN/igi-compare" "$1" "$2" |
         python3 -c 'import json,sys; c = json.load(sys.stdin); print("%.3f %.4g" % (100 * c["mean_relative_bias"], c["relative_mse"]))'

@@ -42,13 +42,7 @@ s.setdefault("render", {})["vpl_sampling"] = how
 json.dump(s, open(out, "w"), indent=1)
 PY
 }
-render() {  # scene out frames extra...
-    local scene=$1 out=$2 frames=$3; shift 3
-    [ -s "$out" ] && return 0
-    nice -n 19 "$BIN/igi-master" --scene "$scene" --allow-outside-paths --local-clients 1 \
-        --width "$W" --height "$H" --frames "$frames" --output "$out" --log-level warn \
-        --listen 127.0.0.1:0 "$@" > "${out%.exr}.log" 2>&1
-}
+. "$ROOT/scripts/render_small.sh"
 bench() {  # scene: the client's CPU seconds a frame (igi-bench's line)
     nice -n 19 "$BIN/igi-bench" --scene "$1" --allow-outside-paths --threads 1 --accumulated \
         --width 320 --height 240 --frames 4 --segments 100000 2>/dev/null |
