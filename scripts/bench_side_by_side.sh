@@ -36,8 +36,8 @@ for s in "${scenes[@]}"; do
     for side in base new; do
       bin="$base"
       [ "$side" = new ] && bin="$new"
-      # The JSON is the output from its first line that opens a brace: a scene's loading
-      # warnings (the Sponza textures' names) come before it on stdout.
+      # The JSON from the first line that opens a brace: builds before igi-bench logged to
+      # stderr printed a scene's loading warnings (the Sponza textures' names) before it.
       "$bin/igi-bench" --scene "$s" --allow-outside-paths --threads 1 --frames "$frames" \
         --segments "$segments" --width "$width" --height "$height" 2>/dev/null |
         sed -n '/^{/,$p' >"$out/$side.$r.json"

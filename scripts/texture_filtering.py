@@ -20,13 +20,14 @@ build/materials_mustshow/texture-transform/closeup-160/). Usage:
 """
 import argparse
 import os
-import subprocess
 import sys
 
 import numpy
 import OpenImageIO as oiio
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import lights_mustshow as lm  # noqa: E402
 
 
 def luminance(path):
@@ -34,18 +35,17 @@ def luminance(path):
 
 
 def cycles(d, variant, threads):
-    """The close-up by Cycles with IGI_CYCLES_TEXTURES=variant; its EXR's path."""
+    """The close-up by Cycles with IGI_CYCLES_TEXTURES=variant (lights_mustshow's Runner, which
+    keeps an image already rendered); its EXR's path."""
     prefix = os.path.join(d, f"cycles-textures-{variant}")
-    exr = prefix + "-128spp.exr"
-    if not os.path.exists(exr):
-        print(f"Cycles, textures {variant}: rendering", flush=True)
-        with open(prefix + ".log", "w") as log:
-            subprocess.run(["nice", "-n", "10", "blender", "-b", "--factory-startup", "-noaudio", "-P",
-                            os.path.join(ROOT, "scripts", "peers", "cycles_render.py"), "--",
-                            os.path.join(d, "scene.json"), prefix, "160", "120", str(threads), "128",
-                            "--seed", "1"], stdout=log, stderr=subprocess.STDOUT, check=True,
-                           env={**os.environ, "IGI_CYCLES_TEXTURES": variant})
-    return exr
+    r = lm.Runner(argparse.Namespace(width=160, height=120, threads=threads, rerun=False,
+                                     build=os.path.join(ROOT, "build"), out=d))
+    os.environ["IGI_CYCLES_TEXTURES"] = variant
+    try:
+        r.cycles(os.path.join(d, "scene.json"), prefix, [128], 1)
+    finally:
+        del os.environ["IGI_CYCLES_TEXTURES"]
+    return prefix + "-128spp.exr"
 
 
 def main():

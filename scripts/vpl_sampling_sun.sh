@@ -46,8 +46,7 @@ PY
 bench() {  # scene: the client's CPU seconds a frame (igi-bench's line)
     nice -n 19 "$BIN/igi-bench" --scene "$1" --allow-outside-paths --threads 1 --accumulated \
         --width 320 --height 240 --frames 4 --segments 100000 2>/dev/null |
-        python3 -c 'import json, sys; t = sys.stdin.read(); b = json.loads(t[t.index("\n{") + 1:] if not t.startswith("{") else t)
-print(b["client_cpu_seconds"] / b["client_frames"])'
+        python3 -c 'import json, sys; b = json.load(sys.stdin); print(b["client_cpu_seconds"] / b["client_frames"])'
 }
 
 printf '| scene | reference | relMSE all | relMSE importance | ratio | without the worst 1 %%: all | importance | ratio | CPU a frame, importance / all | equal-time gain |\n'

@@ -16,6 +16,7 @@
 #include <utility>
 
 #include <embree3/rtcore.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -168,6 +169,9 @@ int main(int argc, char** argv) {
     app.add_option("--width", width, "image width (0: the scene's)");
     app.add_option("--height", height, "image height (0: the scene's)");
     CLI11_PARSE(app, argc, argv);
+    // The JSON is the whole of stdout: scripts read it as it is. Messages (a scene's loading
+    // warnings) go to stderr.
+    spdlog::set_default_logger(spdlog::stderr_color_mt("igi-bench"));
     spdlog::set_level(spdlog::level::warn);
     try {
         igi::SceneLoadOptions loadOptions;
