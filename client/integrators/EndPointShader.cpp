@@ -446,7 +446,8 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
     if (!sampleLobe(lobes, lobe, uRough, remapChoice(uChain, probability), direction, weight))
         return;
     glm::vec3 emitted(0.0f);
-    const glm::vec3 throughput = glossyF * (scale / probability) * weight;
+    const glm::vec3 throughput =
+        glossyF * (scale * radianceScale(lobes, direction) / probability) * weight;
     const auto end = followDeltaChain(
         scene_, scene_.offsetOrigin(hit.position, lobes.faceNormal, direction), direction,
         throughput, 0.0f, maxEyeDepth_, [&] { return random.next(); }, emitted, counters);

@@ -262,7 +262,7 @@ void IgiIntegrator::splitAtFirstHit(PixelPath& p, int pixel, PixelResult& result
         c.end = i + 1;
         c.origin = scene_.offsetOrigin(hit.position, lobes.faceNormal, next);
         c.direction = next;
-        c.weight = weight;
+        c.weight = weight * radianceScale(lobes, next);  // radiance: refraction's eta^2
         continuations.push_back(c);
     }
 }

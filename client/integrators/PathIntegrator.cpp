@@ -44,7 +44,8 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
     glm::vec3 origin = camera_.origin();
     glm::vec3 radiance(0.0f), beta(1.0f);
     bool lastWasNonDelta = false;
-    float lastPdf = 0;  // solid-angle density of the last non-delta bounce's direction
+    float etaScale = 1.0f;  // 1 / the radianceScale factors of the refractions so far
+    float lastPdf = 0;      // solid-angle density of the last non-delta bounce's direction
     glm::vec3 lastPosition(0.0f), lastNormal(0.0f);  // where it was sampled (the light tree's)
     SurfacePoint hit;
     for (int depth = 0; depth < settings_.maxPathLength; ++depth) {
@@ -116,7 +117,9 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
             if (!sampleLobe(lobes, lobe, u, sampler.get(dim + 7), direction, weight)) break;
             const float pdf = roughGlassPdf(lobes, direction);
             if (!(pdf > 0)) break;
-            beta *= weight / probability;
+            const float scale = radianceScale(lobes, direction);
+            beta *= weight * (scale / probability);
+            etaScale /= scale;
             lastWasNonDelta = true;
             lastPdf = pdf;
             lastPosition = hit.position;
@@ -124,12 +127,16 @@ glm::vec3 PathIntegrator::tracePath(int x, int y, std::uint32_t pixelIndex,
         } else {
             glm::vec3 weight;
             if (!sampleLobe(lobes, lobe, u, 0.5f, direction, weight)) break;
-            beta *= weight / probability;
+            const float scale = radianceScale(lobes, direction);
+            beta *= weight * (scale / probability);
+            etaScale /= scale;
             lastWasNonDelta = false;
         }
         origin = scene_.offsetOrigin(hit.position, lobes.faceNormal, direction);
         if (depth >= 3) {  // Russian roulette once the path has had its main bounces
-            const float q = std::min(0.95f, maxComponent(beta));
+            // On the throughput without refraction's eta^2 (as pbrt-v4's etaScale): inside
+            // glass the radiance is compressed, not the path's chance of adding light.
+            const float q = std::min(0.95f, maxComponent(beta) * etaScale);
             if (sampler.get(dim + 6) >= q) break;
             beta /= q;
         }

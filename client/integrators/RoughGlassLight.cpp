@@ -32,7 +32,8 @@ glm::vec3 throughRoughGlass(const TraceableScene& scene, const SurfacePoint& hit
                        : ls.spot   ? spotRamp(ls.cosOuter, ls.spotScale, -glm::dot(w, ls.normal))
                                    : 1.0f;
     if (!(cosX > 0) || cosY <= 0 || glm::dot(w, side) <= 0) return glm::vec3(0.0f);
-    const glm::vec3 f = roughGlassValue(lobes, w);
+    // Radiance, which refraction scales by eta^2 (a light inside the glass, seen from outside).
+    const glm::vec3 f = roughGlassValue(lobes, w) * radianceScale(lobes, w);
     if (isBlack(f)) return glm::vec3(0.0f);
     const glm::vec3 target = ls.isPoint ? ls.position : scene.offsetOrigin(ls.position, ls.normal);
     const float distance = glm::length(target - shadowOrigin);

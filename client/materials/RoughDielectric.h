@@ -31,12 +31,12 @@ namespace igi {
 /// it) and `eta` is the index of refraction below it over the index above it (ior entering
 /// from the outside, 1 / ior leaving from the inside), as for smooth glass (Scattering.cpp).
 ///
-/// Which radiance scaling: the renderer carries radiance through refraction as importance is
-/// carried, without the (eta_wo / eta_wi)^2 of radiance (Transport::Importance everywhere),
-/// as the smooth glass does (its refraction weighs 1 - F both ways): for a closed dielectric
-/// with the camera and the lights outside it the factors entering and leaving cancel exactly,
-/// and an object whose parts are rough and smooth stays consistent. Transport::Radiance is the
-/// physical radiance BTDF, which the reciprocity tests check.
+/// Which radiance scaling: these functions are importance's (Transport::Importance, what light
+/// paths carry: power, which refraction does not scale), as the smooth glass's weights are
+/// (its refraction weighs 1 - F both ways). Eye paths, which carry radiance, multiply them by
+/// Scattering.h's radianceScale, the (eta_wo / eta_wi)^2 of radiance: the same for smooth and
+/// rough glass, so an object whose parts are rough and smooth stays consistent.
+/// Transport::Radiance is the physical radiance BTDF, which the reciprocity tests check.
 namespace roughdielectric {
 
 enum class Transport { Importance, Radiance };

@@ -73,7 +73,8 @@ std::optional<ChainEnd> followDeltaChainFrom(const TraceableScene& scene,
         if (!sampleLobe(end.lobes, lobe, {u0, u1}, remapChoice(uLobe, probability), direction,
                         weight))
             return std::nullopt;
-        throughput *= weight / probability;
+        // Eye paths carry radiance (radianceScale: refraction's eta^2).
+        throughput *= weight * (radianceScale(end.lobes, direction) / probability);
         if (isBlack(throughput)) return std::nullopt;
         const glm::vec3 origin =
             scene.offsetOrigin(end.hit.position, end.lobes.faceNormal, direction);

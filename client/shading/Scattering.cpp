@@ -67,6 +67,7 @@ Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
         float cosT = 0;
         const float cosI = std::max(1e-6f, glm::dot(wo, l.normal));
         const float f = fresnelDielectric(cosI, eta, cosT);
+        l.eta = eta;
         // Rough glass (glTF transmission with roughness): one lobe, the GGX BSDF of the
         // interface, weighed by its albedo estimate at the macro normal.
         if (m.reflection == Reflection::Ggx) {
@@ -77,7 +78,6 @@ Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
                 // mesh) leaves the BSDF without a side: the geometric normal stands in.
                 if (!(glm::dot(wo, l.normal) > 1e-4f)) l.normal = l.faceNormal;
                 l.roughAlpha = alpha;
-                l.eta = eta;
                 l.tint = m.transmittance;
                 l.transmission = f + (1.0f - f) * m.transmittance;
                 return l;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -30,7 +31,7 @@ struct Lobes {
     glm::vec3 mirrorDirection{0.0f};  ///< wo reflected about the shading normal
     glm::vec3 refractDirection{0.0f};
     float roughAlpha = 0;  ///< rough glass: its alpha (>= kMinGgxAlpha); 0 otherwise
-    float eta = 1;         ///< rough glass: the index below `normal` over the one above
+    float eta = 1;         ///< glass: the index below `normal` over the one above; 1 otherwise
     glm::vec3 tint{1.0f};  ///< rough glass: its transmittance (refraction only)
 
     bool hasNonDelta() const { return !brdf.empty(); }
@@ -71,6 +72,18 @@ float remapChoice(float u, float probability);
 /// sampleLobe draws wi; zero where wi is on the wrong side of the geometric surface.
 glm::vec3 roughGlassValue(const Lobes& lobes, glm::vec3 wi);
 float roughGlassPdf(const Lobes& lobes, glm::vec3 wi);
+
+/// What an eye path multiplies a weight of sampleLobe or a value of roughGlassValue toward wi
+/// by. Those are importance's (what light paths carry: power, which refraction does not
+/// scale); radiance is compressed into the denser side's smaller solid angles, so refraction
+/// scales it by (eta_wo / eta_wi)^2: 1 / eta^2 into the glass, eta^2 out of it, 1 for
+/// reflection and for every other material. For a closed object with the camera and the
+/// lights outside it the two cancel; a light inside glass (or a camera) needs it, or eye paths
+/// and light paths disagree by eta^2 on the light it sends out.
+inline float radianceScale(const Lobes& lobes, glm::vec3 wi) {
+    if (lobes.eta == 1.0f || glm::dot(wi, lobes.faceNormal) >= 0.0f) return 1.0f;
+    return 1.0f / (lobes.eta * lobes.eta);
+}
 
 /// Whether a lobe is a delta lobe (mirror or glass).
 inline bool isDelta(Lobe lobe) {
