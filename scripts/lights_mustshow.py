@@ -494,7 +494,7 @@ def markdown(results, a, command, started, seconds):
             n = sp["paths"]
             hit = n - sun["missed"]
             lines += [f"**Wasted light paths on {tag}** (`scripts/peers/sun_paths.py`, geometry only: {n} "
-                      f"paths from the disk of the bounding sphere along the sun `{sun['name']}`, as the renderer "
+                      f"paths from the rectangle the scene's box fills across the sun `{sun['name']}`, as the renderer "
                       f"starts them; a VPL is useful when one of {sp['receivers_on_geometry']} points that camera "
                       "rays hit lies in front of it and sees it): "
                       f"{100 * sun['missed'] / n:.0f} % of the paths hit nothing, "

@@ -4,10 +4,11 @@ anything the camera sees. Geometry only; the renderer is not involved (and not c
 Usage:
   blender -b --factory-startup -noaudio -P scripts/peers/sun_paths.py -- SCENE [PATHS] [RECEIVERS]
 
-The light paths start as the renderer starts a directional light's (docs/LIGHTS.md): uniformly
-on the disk of the scene's bounding sphere (here the sphere around the bounding box) that faces
-the light, travelling along the light's direction (its centre direction: the sun's 0.53-degree
-disk is ignored). Each path's first hit is its first VPL. The camera's receivers are the first
+The light paths start as the renderer starts a directional light's (docs/LIGHTS.md,
+Lights::parallelStart): uniformly on the rectangle across the light that the scene's bounding
+box fills (its eight corners' extent on the two axes of the renderer's Frame about the
+direction), or on the disk of the bounding sphere when that is smaller, travelling along the
+light's direction (its centre direction: the sun's 0.53-degree disk is ignored). Each path's first hit is its first VPL. The camera's receivers are the first
 hits of RECEIVERS (default 400) camera rays through random pixels. A VPL is *useful* when at
 least one receiver lies in front of it, faces it and sees it (a shadow ray); otherwise it is
 *wasted*: no pixel's first hit can receive its light directly (it may still light others
@@ -30,6 +31,35 @@ from mathutils.bvhtree import BVHTree
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import igi_scene  # noqa: E402
+
+
+def frame(n):
+    """The renderer's Frame (math/Frame.h, Duff et al. 2017): the axes s, t across n."""
+    sign = math.copysign(1.0, n.z)
+    a = -1.0 / (sign + n.z)
+    b = n.x * n.y * a
+    return (mathutils.Vector((1 + sign * n.x * n.x * a, sign * b, -sign * n.x)),
+            mathutils.Vector((b, sign + n.y * n.y * a, -n.y)))
+
+
+def start_area(lo, hi, centre, radius, d):
+    """Where the renderer starts a parallel light's paths along d: a function of two uniform
+    numbers to a point, as Lights::parallelStart does (the box's rectangle, or the disk)."""
+    s, t = frame(d)
+    corners = [mathutils.Vector((hi.x if c & 1 else lo.x, hi.y if c & 2 else lo.y,
+                                 hi.z if c & 4 else lo.z)) - centre for c in range(8)]
+    xs, ys = [c.dot(s) for c in corners], [c.dot(t) for c in corners]
+    area = (max(xs) - min(xs)) * (max(ys) - min(ys))
+    back = centre - d * (radius * 1.001)
+    if 0 < area < math.pi * radius * radius:
+        return lambda a, b: (back + s * (min(xs) + a * (max(xs) - min(xs)))
+                             + t * (min(ys) + b * (max(ys) - min(ys))))
+    u, v = basis(d)
+
+    def disk(a, b):
+        r, phi = radius * math.sqrt(a), 2 * math.pi * b
+        return back + u * (r * math.cos(phi)) + v * (r * math.sin(phi))
+    return disk
 
 
 def basis(n):
@@ -96,16 +126,14 @@ def main(argv):
            "receivers_on_geometry": len(seen_points), "suns": []}
     for sun in suns:
         d = mathutils.Vector(sun["direction"]).normalized()
-        u, v = basis(d)
-        origin0 = centre - d * (radius * 1.001)
+        start = start_area(lo, hi, centre, radius, d)
         counts = {"missed": 0, "first_wasted": 0, "first_useful": 0,
                   "second_missed": 0, "second_wasted": 0, "second_useful": 0}
         k = int(math.sqrt(n_paths))
         for i in range(n_paths):
-            # Stratified on the unit square, then the disk (concentric would do as well).
+            # Stratified on the unit square, then the rectangle (or the disk).
             a, b = ((i % k) + rng.random()) / k, ((i // k % k) + rng.random()) / k
-            r, phi = radius * math.sqrt(a), 2 * math.pi * b
-            o = origin0 + u * (r * math.cos(phi)) + v * (r * math.sin(phi))
+            o = start(a, b)
             loc, nrm, _, _ = bvh.ray_cast(o, d)
             if loc is None:
                 counts["missed"] += 1
