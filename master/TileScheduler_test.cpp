@@ -178,8 +178,11 @@ TEST(TileScheduler, TilesLeftOutAreNeverHandedOut) {
     }
     EXPECT_EQ(given.size(), 24u);
     EXPECT_TRUE(s.frameFullyAssigned(0));
-    for (std::uint32_t t = 0; t < 36; ++t)
-        if (leftOut[t]) EXPECT_FALSE(s.complete(1, 0, t)) << "tile " << t << " was never given";
+    for (std::uint32_t t = 0; t < 36; ++t) {
+        if (leftOut[t]) {
+            EXPECT_FALSE(s.complete(1, 0, t)) << "tile " << t << " was never given";
+        }
+    }
     EXPECT_FALSE(s.frameDone(0));
     for (auto t : given) EXPECT_TRUE(s.complete(1, 0, t));
     EXPECT_TRUE(s.frameDone(0));

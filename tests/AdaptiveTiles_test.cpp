@@ -80,7 +80,9 @@ TEST(AdaptiveTiles, RegionsUnderTheTargetAreLeftOutTheSameWithOneAndThreeClients
     const double all = tiles.front();
     for (std::size_t f = 0; f < tiles.size(); ++f) {
         EXPECT_EQ(tiles[f] + leftOut[f], all) << "frame " << f;
-        if (f < 17) EXPECT_EQ(leftOut[f], 0.0) << "frame " << f;
+        if (f < 17) {
+            EXPECT_EQ(leftOut[f], 0.0) << "frame " << f;
+        }
     }
     const auto estimates = column(one, "estimated_rel_mse");
     EXPECT_LE(estimates.back(), target) << "the session ends at the target";

@@ -41,8 +41,9 @@ TEST(LightEdges, MarksThePixelsTheOutlineCrossesAndNoOthers) {
             marked += edges.contains(x, y);
             // A pixel's centre is within 0.71 of any point of it: farther than 2.2 from the
             // outline, no point of the pixel's 3 x 3 neighbourhood is on it.
-            if (distanceToOutline(glm::vec2(x + 0.5f, y + 0.5f)) > 2.2f)
+            if (distanceToOutline(glm::vec2(x + 0.5f, y + 0.5f)) > 2.2f) {
                 EXPECT_FALSE(edges.contains(x, y)) << x << ", " << y;
+            }
         }
     EXPECT_EQ(marked, edges.count());
     EXPECT_GT(marked, 0u);

@@ -130,7 +130,9 @@ TEST(PixelSampler, HalvesOfOneSequenceOverestimateAnEdgesError) {
         const int n = 8 << k;
         std::printf("%d frames: estimate / true squared error %.3f (one sequence), %.3f (fresh)\n",
                     n, sequence[k], fresh[k]);
-        if (n >= 16) EXPECT_GT(sequence[k], 1.5) << n << " frames";
+        if (n >= 16) {
+            EXPECT_GT(sequence[k], 1.5) << n << " frames";
+        }
         EXPECT_GT(fresh[k], 0.9) << n << " frames";
         EXPECT_LT(fresh[k], 1.1) << n << " frames";
     }

@@ -67,7 +67,9 @@ TEST(InstancedLoading, AGltfPrimitivePlacedByThreeNodesIsOneGeometryAndThreeInst
         EXPECT_EQ(part.geometryOf, i == 1 ? -1 : 1);
         EXPECT_EQ(&geometryOf(scene, i), &holder);
         EXPECT_EQ(objectOf(scene, i), 0u);
-        if (i > 1) EXPECT_TRUE(part.positions.empty() && part.triangles.empty());
+        if (i > 1) {
+            EXPECT_TRUE(part.positions.empty() && part.triangles.empty());
+        }
     }
     // Each placed by its node's matrix.
     const SceneState state = SceneState::of(scene);
