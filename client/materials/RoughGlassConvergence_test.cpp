@@ -71,7 +71,11 @@ double randomWalkMean(const Scene& scene, float roughness, int pathsPerPixel) {
         for (int x = 8; x < 16; ++x)
             for (int k = 0; k < pathsPerPixel; ++k, ++paths) {
                 glm::dvec3 o(camera.origin());
-                glm::dvec3 d(camera.direction(float(x) + u(rng), float(y) + u(rng)));
+                // Unit in double: the float direction's length is 1 only to a float ULP, and
+                // the root below assumes |d| = 1; the hit would land ~1e-6 off the sphere,
+                // past the 1e-6 the next root must exceed, and enter the glass twice.
+                const glm::dvec3 d0(camera.direction(float(x) + u(rng), float(y) + u(rng)));
+                glm::dvec3 d = glm::normalize(d0);
                 double throughput = 1;
                 for (int bounce = 0; bounce < 1000; ++bounce) {
                     // |o + t d| = 1, the first root beyond the point the ray leaves.
@@ -156,12 +160,12 @@ double piecesWalkMean(const Scene& scene, const TraceableScene& traceable, int p
 // samples and MIS through the BSDF) and IGI (the sampled continuation alone) agree with the
 // BSDF's own random walk through an analytic sphere within 1 % up to roughness 0.6, never
 // exceed the sky, darken with roughness, and lose under 1 % at roughness 0.2; the smooth
-// sphere is exact. Open: at roughness 0.8 and 1 both renderers are above the walk, by 1.7 %
-// and 3.7 % (the same with flat normals and with 3 or 7 subdivisions); the same walk through
-// the renderer's own pieces on the icosphere (piecesWalkMean) is above it too, by about 2.5 %
-// at roughness 1, and the integrators agree with that one within 1.5 %. So the excess is
-// between the analytic sphere and the mesh, not in the integrators; the test allows 5 % against
-// the analytic walk there and says so (docs/MATERIALS.md).
+// sphere is exact. At roughness 0.8 and 1 the renderers were above the walk by 1.7 % and
+// 3.7 %: the walk's camera rays were unit only in float, their first hit landed ~1e-6 outside
+// the sphere and 12 % of the paths entered the glass twice there, losing the masking of a
+// second rough interface. With unit rays in double the walk agrees with the one through the
+// renderer's pieces (piecesWalkMean) path by path; the renderers are above it by 0.2 to 1.6 %
+// there, by their random streams, so the test allows 2 % at those roughnesses.
 TEST(RoughGlassFurnace, ASphereOfClearGlassConvergesToTheSkyLessTheSingleScatteringLoss) {
     double previous = 2.0;
     for (const float roughness : {0.0f, 0.2f, 0.4f, 0.6f, 0.8f, 1.0f}) {
@@ -183,7 +187,7 @@ TEST(RoughGlassFurnace, ASphereOfClearGlassConvergesToTheSkyLessTheSingleScatter
         EXPECT_NEAR(igiMean / pieces, 1.0, 0.015) << "roughness " << roughness;
         EXPECT_EQ(path.nonFiniteValues() + igi.nonFiniteValues(), 0u);
         EXPECT_LE(pathMean, 1.0 + 2e-3) << "roughness " << roughness;
-        const double tolerance = roughness <= 0.6f ? 0.01 : 0.05;
+        const double tolerance = roughness <= 0.6f ? 0.01 : 0.02;
         EXPECT_NEAR(pathMean / walk, 1.0, tolerance) << "roughness " << roughness;
         EXPECT_NEAR(igiMean / walk, 1.0, tolerance) << "roughness " << roughness;
         EXPECT_NEAR(igiMean / pathMean, 1.0, 0.01) << "roughness " << roughness;
