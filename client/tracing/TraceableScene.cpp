@@ -289,16 +289,23 @@ void TraceableScene::intersectPacket(const glm::vec3* origins, const glm::vec3* 
         else
             rtcIntersect16(p.valid, top_, &context, &p.packet);
         const auto& hit = p.packet.hit;
+        for (int i = 0; i < count; ++i) found[i] = hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        // A scene without textures has nothing to ask the memory for: one pass, without the
+        // halves' vertex records (the Cornell scenes' first frame, docs/MATERIALS.md).
+        if (textures_->empty()) {
+            for (int i = 0; i < count; ++i)
+                if (found[i])
+                    fillSurfacePoint(hit.geomID[i], hit.instID[0][i], hit.primID[i], hit.u[i],
+                                     hit.v[i], p.packet.ray.tfar[i], hits[i]);
+            return;
+        }
         HitVertices vertices[N];
-        for (int i = 0; i < count; ++i) {
-            found[i] = hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        for (int i = 0; i < count; ++i)
             if (found[i])
                 vertices[i] = fillGeometry(hit.geomID[i], hit.instID[0][i], hit.primID[i], hit.u[i],
                                            hit.v[i], p.packet.ray.tfar[i], hits[i]);
-        }
-        if (!textures_->empty())  // a scene without textures has nothing to ask the memory for
-            for (int i = 0; i < count; ++i)
-                if (found[i]) prefetchTextures(vertices[i], hits[i]);
+        for (int i = 0; i < count; ++i)
+            if (found[i]) prefetchTextures(vertices[i], hits[i]);
         for (int i = 0; i < count; ++i)
             if (found[i]) fillTextures(vertices[i], hits[i]);
     };
@@ -328,9 +335,12 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
     fillTextures(fillGeometry(geom, inst, prim, u, v, distance, hit), hit);
 }
 
-TraceableScene::HitVertices TraceableScene::fillGeometry(std::uint32_t geom, std::uint32_t inst,
-                                                         std::uint32_t prim, float u, float v,
-                                                         float distance, SurfacePoint& hit) const {
+// fillGeometry and fillTextures are inlined where they are called, here only: a hit's fill
+// through two calls and a returned HitVertices cost the Cornell scenes' first frame 1.5 % of
+// its instructions (callgrind, docs/MATERIALS.md).
+[[gnu::always_inline]] inline TraceableScene::HitVertices TraceableScene::fillGeometry(
+    std::uint32_t geom, std::uint32_t inst, std::uint32_t prim, float u, float v, float distance,
+    SurfacePoint& hit) const {
     // Through an instance (every mesh in the instanced layout, the instanced meshes in the flat
     // one), the instance's ID is the mesh's; else the geometry ID is.
     const bool viaInstance = inst != RTC_INVALID_GEOMETRY_ID;
@@ -399,7 +409,8 @@ void TraceableScene::prefetchTextures(const HitVertices& h, const SurfacePoint& 
     }
 }
 
-void TraceableScene::fillTextures(const HitVertices& h, SurfacePoint& hit) const {
+[[gnu::always_inline]] inline void TraceableScene::fillTextures(const HitVertices& h,
+                                                                SurfacePoint& hit) const {
     const MeshData& m = *h.m;
     const Mesh& mesh = *m.mesh;
     const glm::uvec3 t = h.t;

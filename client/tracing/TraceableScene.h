@@ -191,11 +191,13 @@ class TraceableScene {
                           float v, float t, SurfacePoint& hit) const;
     /// What fillTextures needs of a hit besides the SurfacePoint: its mesh, triangle,
     /// barycentrics and unit interpolated normal (not yet turned to the face's side).
+    /// (No member initializers: a packet's array of them is filled where a ray hit, and
+    /// zeroing it first cost a 768-byte store per packet.)
     struct HitVertices {
-        const MeshData* m = nullptr;
-        glm::uvec3 t{0};
-        float u = 0, v = 0;
-        glm::vec3 interpolated{0.0f};
+        const MeshData* m;
+        glm::uvec3 t;
+        float u, v;
+        glm::vec3 interpolated;
     };
     /// fillSurfacePoint in two halves, for packets (intersectPacket): the geometry (position,
     /// normals, uv, material) first, then what the textures give (albedo, roughness and
