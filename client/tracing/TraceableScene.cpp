@@ -336,7 +336,7 @@ void TraceableScene::fillSurfacePoint(std::uint32_t geom, std::uint32_t inst, st
 }
 
 // fillGeometry and fillTextures are inlined where they are called, here only: a hit's fill
-// through two calls and a returned HitVertices cost the Cornell scenes' first frame 1.5 % of
+// through two calls and a returned HitVertices cost the default scene's first frame 0.7 % of
 // its instructions (callgrind, docs/MATERIALS.md).
 [[gnu::always_inline]] inline TraceableScene::HitVertices TraceableScene::fillGeometry(
     std::uint32_t geom, std::uint32_t inst, std::uint32_t prim, float u, float v, float distance,
