@@ -1,5 +1,6 @@
 #include "TileRenderer.h"
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <future>
@@ -159,14 +160,16 @@ void TileRenderer::renderChunk(TileJob& job, int chunk) {
                                    set->directNumbers.size() + set->indirect.size());
         local.causticPhotons =
             std::uint32_t(set->caustics.photons().size() + set->indirectCaustics.photons().size());
-        IgiIntegrator::Pixel pixels[kChunkPixels];
-        PixelResult results[kChunkPixels];
+        // Per thread, not on the stack: arrays of structs with member initializers would be
+        // cleared for every chunk (4.5 KB), and shade() sets each result it uses anyway.
+        thread_local std::array<IgiIntegrator::Pixel, kChunkPixels> pixels;
+        thread_local std::array<PixelResult, kChunkPixels> results;
         for (int k = 0; k < count; ++k) {
             const int x = job.tile.columnX(chunkPixel[k].column, n),
                       y = job.tile.rowY(chunkPixel[k].row, m);
             pixels[k] = {x, y, std::uint32_t(y * image_.width + x)};
         }
-        igi_.shade(pixels, count, job.frame, *set, results, counters);
+        igi_.shade(pixels.data(), count, job.frame, *set, results.data(), counters);
         for (int k = 0; k < count; ++k) {
             const int i = chunkPixel[k].index, x = pixels[k].x, y = pixels[k].y;
             PixelResult& r = results[k];

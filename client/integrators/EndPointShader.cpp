@@ -118,16 +118,16 @@ EndPointLight EndPointShader::shadeAt(const ShadingPoint& x, const LightingSet& 
                                       const ConnectionBound* residual,
                                       RayCounters& counters) const {
     ShadowQueue& queue = scratchQueue(depth);
-    const Pending pending = queueAt(x, set, random != nullptr, depth, residual, queue);
+    Pending pending;
+    queueAt(x, set, random != nullptr, depth, residual, queue, pending);
     queue.trace(scene_, counters);
     return finishAt(x, set, random, depth, residual, pending, queue, counters);
 }
 
-EndPointShader::Pending EndPointShader::queueAt(const ShadingPoint& x, const LightingSet& set,
-                                                bool withRandom, int depth,
-                                                const ConnectionBound* residual,
-                                                ShadowQueue& queue) const {
-    Pending pending;
+void EndPointShader::queueAt(const ShadingPoint& x, const LightingSet& set, bool withRandom,
+                             int depth, const ConnectionBound* residual, ShadowQueue& queue,
+                             Pending& pending) const {
+    pending = Pending{};
     const bool glossy = x.brdf.hasGlossy();
     pending.continuation = withRandom && depth < kMaxDepth &&
                            (glossy || (compensate_ && set.compensationShare > 0 &&
@@ -143,7 +143,6 @@ EndPointShader::Pending EndPointShader::queueAt(const ShadingPoint& x, const Lig
     pending.exactEntries = std::uint32_t(queue.size() - before);
     pending.indirectFromMethod =
         queueConnections(x, set, pending.continuation && glossy, residual, queue);
-    return pending;
 }
 
 EndPointLight EndPointShader::finishAt(const ShadingPoint& x, const LightingSet& set,
@@ -165,9 +164,10 @@ EndPointLight EndPointShader::finishAt(const ShadingPoint& x, const LightingSet&
     return {sums.irradiance * kInvPi, sums.glossy, sharpIrradiance * kInvPi, sharpGlossy};
 }
 
-void EndPointShader::connectLight(const ShadingPoint& x, const Vpl& v, std::uint32_t target,
-                                  float lightSamples, bool mis, glm::vec3 origin,
-                                  const ConnectionBound* residual, ShadowQueue& queue) const {
+inline void EndPointShader::connectLight(const ShadingPoint& x, const Vpl& v, std::uint32_t target,
+                                         float lightSamples, bool mis, glm::vec3 origin,
+                                         const ConnectionBound* residual,
+                                         ShadowQueue& queue) const {
     // Direct light: not bounded (its singularity is the light's own size, and for a glossy
     // lobe the MIS weight takes the light samples out where BRDF sampling is better).
     const SurfaceBrdf& b = x.brdf;

@@ -86,8 +86,11 @@ class EndPointShader {
         bool indirectFromMethod = false;  ///< Lambertian indirect light from the method's records
         std::uint32_t exactEntries = 0;   ///< its first queued connections: to exact lights
     };
-    Pending queue(const ShadingPoint& x, const LightingSet& set, ShadowQueue& queue) const {
-        return queueAt(x, set, true, 0, nullptr, queue);
+    /// Written into `pending` (not returned: GCC packs a returned Pending into registers
+    /// through the stack, and the 8-byte loads of the 4- and 1-byte stores wait for them).
+    void queue(const ShadingPoint& x, const LightingSet& set, ShadowQueue& queue,
+               Pending& pending) const {
+        queueAt(x, set, true, 0, nullptr, queue, pending);
     }
     EndPointLight finish(const ShadingPoint& x, const LightingSet& set, PathRandom& random,
                          const Pending& pending, const ShadowQueue& queue,
@@ -110,8 +113,8 @@ class EndPointShader {
     /// 1 - residual->kept(s(w)), s this point's sharpness (ConnectionBound).
     EndPointLight shadeAt(const ShadingPoint& x, const LightingSet& set, PathRandom* random,
                           int depth, const ConnectionBound* residual, RayCounters& counters) const;
-    Pending queueAt(const ShadingPoint& x, const LightingSet& set, bool withRandom, int depth,
-                    const ConnectionBound* residual, ShadowQueue& queue) const;
+    void queueAt(const ShadingPoint& x, const LightingSet& set, bool withRandom, int depth,
+                 const ConnectionBound* residual, ShadowQueue& queue, Pending& pending) const;
     EndPointLight finishAt(const ShadingPoint& x, const LightingSet& set, PathRandom* random,
                            int depth, const ConnectionBound* residual, const Pending& pending,
                            const ShadowQueue& queue, RayCounters& counters) const;
@@ -121,9 +124,11 @@ class EndPointShader {
                           const ConnectionBound* residual, ShadowQueue& queue) const;
     /// The connection to a light sample v (the set's target `target`), one of `lightSamples`
     /// at x; for a glossy lobe weighted by MIS against the continuation when `mis`.
-    void connectLight(const ShadingPoint& x, const Vpl& v, std::uint32_t target, float lightSamples,
-                      bool mis, glm::vec3 origin, const ConnectionBound* residual,
-                      ShadowQueue& queue) const;
+    [[gnu::always_inline]] inline void connectLight(const ShadingPoint& x, const Vpl& v,
+                                                    std::uint32_t target, float lightSamples,
+                                                    bool mis, glm::vec3 origin,
+                                                    const ConnectionBound* residual,
+                                                    ShadowQueue& queue) const;
     /// The connection to the set's indirect VPL j, its contribution scaled by `scale` (a chosen
     /// VPL's weight), from the shadow rays' `origin` at x.
     void connectVpl(const ShadingPoint& x, const LightingSet& set, std::size_t j, float scale,

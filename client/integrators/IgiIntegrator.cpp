@@ -118,8 +118,8 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
         followChains(p, i, continuations, next, results[i], counters);
         for (int e = 0; e < 3; ++e)
             if (p.ends[e])
-                p.pending[e] =
-                    shader_.queue(ShadingPoint::at(p.ends[e]->hit, p.ends[e]->lobes), set, queue);
+                shader_.queue(ShadingPoint::at(p.ends[e]->hit, p.ends[e]->lobes), set, queue,
+                              p.pending[e]);
     }
     queue.trace(scene_, counters);
     for (int i = 0; i < count; ++i)
@@ -234,16 +234,16 @@ void IgiIntegrator::splitAtFirstHit(PixelPath& p, int pixel, PixelResult& result
     const SurfacePoint& hit = p.hit;
     const glm::vec3 wo = -p.direction;
     if (!p.lightFromEdgeRays) result.unfiltered += emittedToward(hit, wo);
-    const Lobes lobes = lobesAt(hit, wo);
+    // The lobes are built in the non-delta end point's place (ChainEnd's constructor), which
+    // is emptied again if they have no non-delta part; the delta lobes below read them there.
+    const Lobes& lobes = p.ends[0].emplace(hit, wo, glm::vec3(1.0f), hit.distance).lobes;
 
     // Split once: the non-delta part here, and one path per delta component, whose first ray
     // (a delta lobe's direction takes no random numbers) is traced with the other pixels'.
     // Rough glass's one lobe (reflection and refraction) is sampled with the pixel's next
     // three numbers, which only such a hit draws.
-    if (lobes.hasNonDelta()) p.ends[0] = ChainEnd{hit, lobes, glm::vec3(1.0f), hit.distance};
-    if (settings_.maxEyeDepth < 1) return;
     const Lobe deltas[2] = {Lobe::Reflection, Lobe::Transmission};
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < 2 && settings_.maxEyeDepth >= 1; ++i) {
         glm::vec3 next, weight;
         if (lobeWeight(lobes, deltas[i]) <= 0) continue;
         glm::vec2 u(0.5f);
@@ -265,6 +265,7 @@ void IgiIntegrator::splitAtFirstHit(PixelPath& p, int pixel, PixelResult& result
         c.weight = weight * radianceScale(lobes, next);  // radiance: refraction's eta^2
         continuations.push_back(c);
     }
+    if (!lobes.hasNonDelta()) p.ends[0].reset();
 }
 
 glm::vec3 IgiIntegrator::roughGlassDeltaLight(const SurfacePoint& hit, const Lobes& lobes,
@@ -286,9 +287,9 @@ void IgiIntegrator::followChains(PixelPath& p, int pixel,
             continue;
         }
         // Without delta lights nothing is drawn for them: such scenes keep their numbers.
-        p.ends[c.end] = followDeltaChainFrom(
-            scene_, c.hit, c.direction, c.weight, p.hit.distance, settings_.maxEyeDepth,
-            [&] { return random.next(); }, result.unfiltered, counters,
+        followDeltaChainInto(
+            p.ends[c.end], scene_, c.hit, c.direction, c.weight, p.hit.distance,
+            settings_.maxEyeDepth, [&] { return random.next(); }, result.unfiltered, counters,
             [&](const SurfacePoint& hit, const Lobes& lobes, glm::vec3 throughput) {
                 if (lights_.hasDeltaLights())
                     result.unfiltered +=

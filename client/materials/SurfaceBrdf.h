@@ -49,16 +49,23 @@ struct SurfaceBrdf {
     /// A Lambertian lobe and a Phong lobe (ks zero: none). Set `mirror` before evaluating it.
     static SurfaceBrdf make(glm::vec3 kd, glm::vec3 ks, float exponent, glm::vec3 normal) {
         SurfaceBrdf b;
-        b.kd = kd;
-        b.ks = ks;
-        b.exponent = exponent;
-        b.normal = normal;
-        const float d = meanComponent(kd), g = meanComponent(ks), total = d + g;
-        if (total > 0) {
-            b.diffuseShare = d / total;
-            b.glossyShare = g / total;
-        }
+        b.setPhong(kd, ks, exponent, normal, glm::vec3(0.0f));
         return b;
+    }
+    /// make()'s lobes with `mirror`, every field written in place (lobesAt builds them inside
+    /// a larger struct: made on the stack and copied there, the copy's 16-byte loads would wait
+    /// for the narrower stores that made them).
+    void setPhong(glm::vec3 kd_, glm::vec3 ks_, float exponent_, glm::vec3 normal_,
+                  glm::vec3 mirror_) {
+        kd = kd_;
+        ks = ks_;
+        exponent = exponent_;
+        normal = normal_;
+        mirror = mirror_;
+        model = GlossyModel::Phong;
+        const float d = meanComponent(kd_), g = meanComponent(ks_), total = d + g;
+        diffuseShare = total > 0 ? d / total : 0.0f;
+        glossyShare = total > 0 ? g / total : 0.0f;
     }
 
     /// A Lambertian lobe and a GGX lobe (f0 zero: none), seen from the mirror image of `mirror`.

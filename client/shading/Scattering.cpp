@@ -44,10 +44,19 @@ void setGgx(const SurfacePoint& hit, Lobes& l) {
     l.brdf = SurfaceBrdf::makeGgx(kd, f0, alpha, l.normal, l.mirrorDirection);
 }
 
-}  // namespace
+// OBJ's materials: a Lambertian and a Phong lobe, or a mirror over a Lambertian one, about the
+// normal and mirror direction already in `l`.
+inline void setPhong(const SurfacePoint& hit, Lobes& l) {
+    const Material& m = *hit.material;
+    const bool glossy = m.reflection == Reflection::Glossy && m.phongExponent >= 0;
+    l.brdf.setPhong(hit.albedo, glossy ? m.specular : glm::vec3(0.0f), m.phongExponent, l.normal,
+                    l.mirrorDirection);
+    if (m.reflection == Reflection::Mirror) l.reflection = m.specular;
+}
 
-Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
-    Lobes l;
+// Glass, GGX and normal- or bump-mapped materials: what the OBJ materials' path below leaves.
+[[gnu::noinline]] void setOtherLobes(const SurfacePoint& hit, glm::vec3 wo, Lobes& l) {
+    l = Lobes{};
     const Material& m = *hit.material;
     const bool front = glm::dot(wo, hit.geometricNormal) >= 0;
     l.faceNormal = front ? hit.geometricNormal : -hit.geometricNormal;
@@ -80,7 +89,7 @@ Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
                 l.roughAlpha = alpha;
                 l.tint = m.transmittance;
                 l.transmission = f + (1.0f - f) * m.transmittance;
-                return l;
+                return;
             }
         }
         l.reflection = glm::vec3(f);
@@ -88,18 +97,39 @@ Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
             l.transmission = (1.0f - f) * m.transmittance;
             l.refractDirection = refract(wo, l.normal, eta, cosT);
         }
-        return l;
+        return;
     }
     if (m.reflection == Reflection::Ggx) {
-        setGgx(hit, l);  // (in place: every return is `l`, which the compiler builds in place)
-        return l;
+        setGgx(hit, l);
+        return;
     }
-    const bool glossy = m.reflection == Reflection::Glossy && m.phongExponent >= 0;
-    l.brdf = SurfaceBrdf::make(hit.albedo, glossy ? m.specular : glm::vec3(0.0f), m.phongExponent,
-                               l.normal);
-    l.brdf.mirror = l.mirrorDirection;
-    if (m.reflection == Reflection::Mirror) l.reflection = m.specular;
-    return l;
+    setPhong(hit, l);
+}
+
+}  // namespace
+
+void setLobesAt(const SurfacePoint& hit, glm::vec3 wo, Lobes& l) {
+    const Material& m = *hit.material;
+    if (m.glass || m.reflection == Reflection::Ggx || m.perturbsNormal())
+        return setOtherLobes(hit, wo, l);
+    // OBJ's materials (Lambertian, Phong, mirror) on interpolated normals: what every eye path
+    // of the Cornell scenes meets, kept free of calls (around a call GCC keeps wo and the
+    // normals on the stack, and reloads them with loads that straddle its stores, a stall each).
+    const bool front = glm::dot(wo, hit.geometricNormal) >= 0;
+    const glm::vec3 normal = front ? hit.shadingNormal : -hit.shadingNormal;
+    const glm::vec3 mirror = reflect(wo, normal);
+    // Every field once (no clear of the whole first: l may be a ChainEnd's, just built).
+    l.reflection = glm::vec3(0.0f);
+    l.transmission = glm::vec3(0.0f);
+    l.normal = normal;
+    l.faceNormal = front ? hit.geometricNormal : -hit.geometricNormal;
+    l.wo = wo;
+    l.mirrorDirection = mirror;
+    l.refractDirection = glm::vec3(0.0f);
+    l.roughAlpha = 0;
+    l.eta = 1;
+    l.tint = glm::vec3(1.0f);
+    setPhong(hit, l);  // l.brdf, and l.reflection for a mirror
 }
 
 float lobeWeight(const Lobes& l, Lobe lobe) {

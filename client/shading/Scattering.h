@@ -39,7 +39,16 @@ struct Lobes {
     bool roughGlass() const { return roughAlpha > 0; }
 };
 
-Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo);
+/// The lobes at `hit` seen from wo, written into `l` (every field): where lobes are kept in a
+/// larger struct (a ChainEnd), so that they are not built in a temporary and copied there (a
+/// copy that reads with 16-byte loads what was just written 4 and 8 bytes at a time waits for
+/// the stores to drain, on every eye path).
+void setLobesAt(const SurfacePoint& hit, glm::vec3 wo, Lobes& l);
+inline Lobes lobesAt(const SurfacePoint& hit, glm::vec3 wo) {
+    Lobes l;
+    setLobesAt(hit, wo, l);
+    return l;
+}
 
 enum class Lobe { Diffuse, Glossy, Reflection, Transmission };
 
