@@ -5,8 +5,20 @@
 # the medians of: client shadow rays / raw rtcOccluded16 per CPU second, and client CPU seconds
 # per frame; then NEW's frame time over BASE's (median of the per-run ratios).
 #
+# igi-bench hands every tile of a frame to its thread pool at once, so a frame's tile buffers
+# (six planes of a 32 x 32 tile: 64 KB a tile, about 20 MB a frame at 640 x 480) are
+# allocated together and freed together; glibc gives the freed top of its heap back to the
+# system and the next frame faults it in again. That cost 15 to 25 % of the client CPU seconds
+# on CornellBox-Original, in every build alike, and scattered from run to run. A client in a
+# session, which receives its tiles a few at a time, does not pay it (igi-master
+# --local-clients 1, 24 frames: 41.7 K page faults in all its processes as is, 40.9 K with the
+# thresholds raised; igi-bench, 8 frames: 24 K to 29 K against 18 K). So by default both builds
+# run with glibc's trim and mmap thresholds raised (GLIBC_TUNABLES below), which measures the
+# rendering alone; --default-malloc measures as before.
+#
 # Usage: scripts/bench_side_by_side.sh BASE_BIN NEW_BIN [--runs 3] [--frames 4]
-#                                      [--segments 4000000] [--width 640 --height 480] [scene...]
+#                                      [--segments 4000000] [--width 640 --height 480]
+#                                      [--default-malloc] [scene...]
 # BASE_BIN and NEW_BIN are folders holding igi-bench (a build's bin/). Without scenes: the
 # many-light interiors scenes/interior/glossy.json and sculptures.json, the Sponza arcades
 # (scenes/sponza/arcades.json, meshes from ../shared/scenes) and the default Cornell scene.
@@ -14,7 +26,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 base="$1" new="$2"
 shift 2
-runs=3 frames=4 segments=4000000 width=640 height=480 scenes=()
+runs=3 frames=4 segments=4000000 width=640 height=480 default_malloc=0 scenes=()
 while (($#)); do
   case "$1" in
     --runs) runs="$2"; shift 2 ;;
@@ -22,12 +34,16 @@ while (($#)); do
     --segments) segments="$2"; shift 2 ;;
     --width) width="$2"; shift 2 ;;
     --height) height="$2"; shift 2 ;;
+    --default-malloc) default_malloc=1; shift ;;
     *) scenes+=("$1"); shift ;;
   esac
 done
 if ((${#scenes[@]} == 0)); then
   scenes=("$root/scenes/interior/glossy.json" "$root/scenes/interior/sculptures.json"
           "$root/scenes/sponza/arcades.json" "$root/scenes/cornell/cornell.json")
+fi
+if ((!default_malloc)); then
+  export GLIBC_TUNABLES=glibc.malloc.trim_threshold=1000000000:glibc.malloc.mmap_threshold=1000000000
 fi
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
