@@ -26,7 +26,7 @@ struct ChainEnd {
     ChainEnd() = default;
     /// At `hit` seen from wo, its lobes built in place. (Eye paths build one per pixel in
     /// PixelPath::ends: neither a temporary copied there nor a whole ChainEnd cleared first,
-    /// 280 bytes that GCC clears and copies through libc's memset and memcpy.)
+    /// 288 bytes that GCC clears and copies through libc's memset and memcpy.)
     ChainEnd(const SurfacePoint& hit, glm::vec3 wo, glm::vec3 throughput, float pathLength)
         : hit(hit), lobes(lobesAt(hit, wo)), throughput(throughput), pathLength(pathLength) {}
 };
@@ -41,15 +41,15 @@ inline float nonDeltaProbability(const Lobes& l) {
 
 /// Follows a path through mirrors and glass from `firstHit`, where a ray along `direction` has
 /// already landed: at every vertex one lobe is chosen (one number from `next()`), and the path
-/// ends at the first vertex whose non-delta part is chosen, written into `end` (true). Emitters
+/// ends at the first vertex whose non-delta part is chosen, written into `out` (true). Emitters
 /// met on the way add throughput * Le to `emitted`, and so does the sky where the path leaves
-/// the scene. False, with `end` empty, when the path leaves the scene, is absorbed, or has
+/// the scene. False, with `out` empty, when the path leaves the scene, is absorbed, or has
 /// not ended after `maxHits` intersections (the first hit counts as one).
 /// `atRoughGlass(hit, lobes, throughput)` is called at every vertex where the path goes on
 /// through rough glass, with the throughput up to it (its lobe's choice included), before the
 /// path leaves it: IGI adds the light that only a light sample finds there.
 /// The end is built where the caller keeps it (eye paths: PixelPath::ends), not returned and
-/// copied: a ChainEnd is 280 bytes, copied once per eye path.
+/// copied: a ChainEnd is 288 bytes, copied once per eye path.
 template <typename Next, typename AtRoughGlass>
 bool followDeltaChainInto(std::optional<ChainEnd>& out, const TraceableScene& scene,
                           const SurfacePoint& firstHit, glm::vec3 direction, glm::vec3 throughput,
