@@ -41,9 +41,9 @@ inline float nonDeltaProbability(const Lobes& l) {
 
 /// Follows a path through mirrors and glass from `firstHit`, where a ray along `direction` has
 /// already landed: at every vertex one lobe is chosen (one number from `next()`), and the path
-/// ends at the first vertex whose non-delta part is chosen, written into `out` (true). Emitters
-/// met on the way add throughput * Le to `emitted`, and so does the sky where the path leaves
-/// the scene. False, with `out` empty, when the path leaves the scene, is absorbed, or has
+/// ends at the first vertex whose non-delta part is chosen, written into `out`. Emitters met
+/// on the way add throughput * Le to `emitted`, and so does the sky where the path leaves the
+/// scene. `out` is left empty when the path leaves the scene, is absorbed, or has
 /// not ended after `maxHits` intersections (the first hit counts as one).
 /// `atRoughGlass(hit, lobes, throughput)` is called at every vertex where the path goes on
 /// through rough glass, with the throughput up to it (its lobe's choice included), before the
@@ -51,7 +51,7 @@ inline float nonDeltaProbability(const Lobes& l) {
 /// The end is built where the caller keeps it (eye paths: PixelPath::ends), not returned and
 /// copied: a ChainEnd is 288 bytes, copied once per eye path.
 template <typename Next, typename AtRoughGlass>
-bool followDeltaChainInto(std::optional<ChainEnd>& out, const TraceableScene& scene,
+void followDeltaChainInto(std::optional<ChainEnd>& out, const TraceableScene& scene,
                           const SurfacePoint& firstHit, glm::vec3 direction, glm::vec3 throughput,
                           float pathLength, int maxHits, Next&& next, glm::vec3& emitted,
                           RayCounters& counters, AtRoughGlass&& atRoughGlass) {
@@ -70,7 +70,7 @@ bool followDeltaChainInto(std::optional<ChainEnd>& out, const TraceableScene& sc
         if (!isDelta(lobe)) {
             end.throughput = throughput / nonDeltaProbability(end.lobes);
             end.pathLength = pathLength;
-            return true;
+            return;
         }
         if (hits >= maxHits) break;
         glm::vec3 weight;
@@ -92,7 +92,6 @@ bool followDeltaChainInto(std::optional<ChainEnd>& out, const TraceableScene& sc
         }
     }
     out.reset();
-    return false;
 }
 
 /// followDeltaChainInto, the end returned.
