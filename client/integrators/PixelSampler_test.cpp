@@ -109,9 +109,9 @@ std::vector<double> estimateOverTruth(
 
 // Why the rays that gather the light at its edges (IgiIntegrator::gatherLightAtEdges) are
 // independent from frame to frame: with the eye ray's position, one sequence over the frames,
-// the error estimate's halves (RowAccumulator::inFirstHalf) differ far more than the mean errs
-// at a pixel cut by an edge, the more so with more frames (docs/ERROR_ESTIMATE.md); with
-// positions drawn afresh in each frame, as gatherLightAtEdges's are, they do not.
+// the error estimate's halves (RowAccumulator::inFirstHalf) differ more than the mean errs at
+// a pixel cut by an edge (docs/ERROR_ESTIMATE.md); with positions drawn afresh in each frame,
+// as gatherLightAtEdges's are, they do not.
 TEST(PixelSampler, HalvesOfOneSequenceOverestimateAnEdgesError) {
     const auto sequence = estimateOverTruth(
         [](std::uint32_t pixel, std::uint32_t frame) {
@@ -133,6 +133,10 @@ TEST(PixelSampler, HalvesOfOneSequenceOverestimateAnEdgesError) {
         if (n >= 16) {
             EXPECT_GT(sequence[k], 1.5) << n << " frames";
         }
+        // The halves are blocks of 2^j frames, each stratified as the whole is
+        // (RowAccumulator::inFirstHalf): the excess stays under 4x. With one frame of each pair
+        // in each half, at random, it was 2.5x to 20x (4.5x at 32 frames, 20x at 64).
+        EXPECT_LT(sequence[k], 4.2) << n << " frames";
         EXPECT_GT(fresh[k], 0.9) << n << " frames";
         EXPECT_LT(fresh[k], 1.1) << n << " frames";
     }

@@ -1,6 +1,7 @@
 #include "render/RowAccumulator.h"
 
 #include <algorithm>
+#include <bit>
 #include <stdexcept>
 #include <type_traits>
 
@@ -263,15 +264,14 @@ IGI_LANES void poolVariance(const Pool& p, const double* own, const double* colu
     }
 }
 
-/// The estimated relMSE of each pixel of row y's mean after `frames` (>= 2) frames, in cell
-/// order, from the sums; `weight`: the filtered mean's weight in the blend (null: 1); `mean`:
-/// the mean's R, G, B as shown (floats, cell order). RowAccumulator::meanRow says why: the
+/// The estimated relMSE of each pixel of row y's mean after `frames` (both halves have one)
+/// frames, in cell order, from the sums; `weight`: the filtered mean's weight in the blend
+/// (null: 1). RowAccumulator::meanRow says why: the
 /// noise, from the halves' difference, and with the unfiltered sums (withdrawBlur) the filter's
 /// blur, whose square is estimated without the noise it carries. With varying counts
 /// (l.counts) each pixel's own `frames` and `firstHalf`: 0 where a half has none.
 void estimateErrors(const Layout& l, const std::vector<double>& sums, int y, int frames,
-                    int firstHalf, int width, const double* weight, float* const* mean,
-                    double* error) {
+                    int firstHalf, int width, const double* weight, double* error) {
     const double* counts = l.counts ? l.counts + std::size_t(y) * l.entries() : nullptr;
     const double* firstHalfCounts =
         l.counts ? l.firstHalfCounts + std::size_t(y) * l.entries() : nullptr;
@@ -306,7 +306,9 @@ void estimateErrors(const Layout& l, const std::vector<double>& sums, int y, int
                 a = w * a + (1.0 - w) * uA;
                 b = w * b + (1.0 - w) * uB;
             }
-            const double shown = mean[c][i], denominator = shown * shown + kRelativeMseEpsilon;
+            // truth^2 + 0.01: A B's expectation is truth^2, mean^2's is truth^2 + Var(mean)
+            // (meanRow).
+            const double denominator = std::max(0.0, a * b) + kRelativeMseEpsilon;
             e += (a - b) * (a - b) / denominator;
             blurs += blur / denominator;
         }
@@ -324,9 +326,9 @@ struct Mean {
 };
 
 /// Writes row y's estimated error (estimateErrors) in image order to `error` (if any): 0
-/// before two frames, which give no spread.
+/// while a half has no frame (RowAccumulator::kFirstEstimateFrames), which gives no spread.
 void writeErrors(const Mean& m, const std::vector<double>& sums, int y, int frames,
-                 const double* weight, float* const* mean, float* error) {
+                 const double* weight, float* error) {
     if (!error) return;
     const int width = m.order.width();
     if (!m.l.counts &&
@@ -336,7 +338,7 @@ void writeErrors(const Mean& m, const std::vector<double>& sums, int y, int fram
     }
     thread_local std::vector<double> cells;
     cells.resize(std::size_t(width));
-    estimateErrors(m.l, sums, y, frames, m.firstHalf, width, weight, mean, cells.data());
+    estimateErrors(m.l, sums, y, frames, m.firstHalf, width, weight, cells.data());
     for (int x = 0; x < width; ++x) error[x] = float(cells[std::size_t(m.order.position(x))]);
 }
 
@@ -376,7 +378,7 @@ IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y
                                               loadDoubles<D>(field + kHalf) * invAt(i + kHalf)));
                 }
             }
-        writeErrors(m, sums, y, frames, nullptr, mean, error);
+        writeErrors(m, sums, y, frames, nullptr, error);
         return toImageOrderStreamed(m.order, mean[0], mean[1], mean[2], out);
     }
     const D tolerance = splat<D>(Varying ? 0.0 : Accumulator::blurTolerance(frames));
@@ -433,7 +435,7 @@ IGI_LANES void meanRowBody(const Mean& m, const std::vector<double>& sums, int y
                 store(mean[c] + b * kBlock + j, narrow(halves[c][0], halves[c][1]));
         }
     }
-    writeErrors(m, sums, y, frames, scratch.weight.data(), mean, error);
+    writeErrors(m, sums, y, frames, scratch.weight.data(), error);
     toImageOrderStreamed(m.order, mean[0], mean[1], mean[2], out);
 }
 
@@ -550,13 +552,8 @@ double RowAccumulator::frameCount(int x, int y) const {
 }
 
 bool RowAccumulator::inFirstHalf(int frame) {
-    // One frame of each pair (2i, 2i + 1) to each half, so that the halves never differ by
-    // more than a frame; which one by a bit of splitmix64's finalizer of i, a pattern that
-    // neither the frame's parity nor its Sobol' bits follow.
-    std::uint64_t z = std::uint64_t(frame >> 1) + 0x9e3779b97f4a7c15ull;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return ((z ^ (z >> 31)) & 1u) == std::uint64_t(frame & 1);
+    // Blocks [2^j, 2^(j+1)) with j odd: 2-3, 8-15, 32-63, ... (the header says why).
+    return frame >= 2 && (std::bit_width(unsigned(frame)) - 1) % 2 == 1;
 }
 
 std::pair<int, int> RowAccumulator::meanWindow(int y) const {

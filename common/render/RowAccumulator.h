@@ -41,14 +41,24 @@ class RowAccumulator {
         ++frames_;
     }
     /// Whether frame `frame` of an accumulation (0-based) goes to the first of the two halves
-    /// meanRow's error estimate compares: one frame of each pair (2i, 2i + 1) in each half,
-    /// which one pseudo-random.
-    /// Not even against odd frames: the frames' random numbers come from Sobol' points indexed
-    /// by the frame, and the even points of a Sobol' dimension lie in [0, 1/2) and the odd ones
-    /// in [1/2, 1), so even and odd frames sample different halves of the domain and their
-    /// means differ by a bias that no number of frames removes (measured: the estimate stopped
-    /// falling at 9e-4 on CornellBox-Original while the true relMSE fell to 8e-5).
+    /// meanRow's error estimate compares: the frames of the blocks [2^j, 2^(j+1)) with j odd
+    /// (2-3, 8-15, 32-63, ...), the others (0-1, 4-7, 16-31, ...) to the second.
+    /// Why blocks: a pixel's position in its footprint is one Sobol' sequence over the frames,
+    /// and an aligned block of 2^j of its points is itself stratified (PixelSampler). A half
+    /// made of such blocks is stratified as the whole is, only coarser, so at a pixel cut by
+    /// an edge its mean errs about as the whole's does: the estimate is 1.9x to 3.6x the true
+    /// squared error of a pure edge (PixelSampler_test's model), against 2.5x to 20x with one
+    /// frame of each pair in each half at random, which made each half a random pick.
+    /// Not even against odd frames: the even points of a Sobol' dimension lie in [0, 1/2) and
+    /// the odd ones in [1/2, 1), so even and odd frames sample different halves of the domain
+    /// and their means differ by a bias that no number of frames removes (measured: the
+    /// estimate stopped falling at 9e-4 on CornellBox-Original while the true relMSE fell to
+    /// 8e-5). The first half gets its first frame third: there is an estimate from
+    /// kFirstEstimateFrames on.
     static bool inFirstHalf(int frame);
+    /// The first accumulated frame count at which both halves have a frame (inFirstHalf), so
+    /// that meanRow estimates an error: before it, the estimate is 0 and means nothing.
+    static constexpr int kFirstEstimateFrames = 3;
     /// What addRow wrote for row y, given the sums after `frames` frames (with per-pixel
     /// counts, after each pixel's own).
     void varianceRow(int y, int frames, double* variance, lanes::Isa isa = lanes::bestIsa()) const;
@@ -60,10 +70,10 @@ class RowAccumulator {
     ///
     /// `error` (if not null, an image row of floats): each pixel's estimated relMSE, the
     /// expected (mean - truth)^2 / (truth^2 + 0.01) averaged over R, G, B, as igi-compare's
-    /// relative_mse measures it against a reference (kRelativeMseEpsilon); 0 before two
-    /// frames. Without a reference, from the frames' own spread: the sums of the first half's
-    /// frames (inFirstHalf: a pseudo-random half, nA of the n) are kept beside those of all n,
-    /// so the mean splits into two independent half-means, A of the first half and B of the
+    /// relative_mse measures it against a reference (kRelativeMseEpsilon); 0 before
+    /// kFirstEstimateFrames. Without a reference, from the frames' own spread: the sums of the
+    /// first half's frames (inFirstHalf: blocks of frames, nA of the n) are kept beside those of
+    /// all n, so the mean splits into two independent half-means, A of the first half and B of the
     /// others (nB = n - nA), with mean = (nA A + nB B) / n. If the frames are
     /// independent with variance s^2 each, Var(A) = s^2 / nA, Var(B) = s^2 / nB, and
     /// E[(A - B)^2] = s^2 (1 / nA + 1 / nB) = s^2 n / (nA nB), while Var(mean) = s^2 / n, so
@@ -74,16 +84,20 @@ class RowAccumulator {
     /// added: d = F - U holds the blur's bias and d's own noise, which the halves' d estimate
     /// as the mean's, so w^2 max(0, d^2 - (dA - dB)^2 nA nB / n^2) estimates the squared bias
     /// the blend keeps (high by chance where there is no blur: the pixels the filter withdraws
-    /// by chance are those whose d is large). The relMSE's denominator takes the mean shown for
-    /// the truth. What this cannot see: a bias common to all frames (the blur the filter keeps
-    /// where w = 1, the converged estimator's remaining bias), w's own dependence on the data,
-    /// and a denominator that is noisy itself while the mean is (dark pixels after few
-    /// frames). A bias of the first frame alone (the paper's clamp, which the converging
-    /// estimator keeps in frame 0) is seen: it is in one half only, so (A - B)^2 nA nB / n^2
-    /// holds b^2 / n^2 times (other half's frames) / (its half's frames), about the mean's
-    /// squared bias b^2 / n^2. One pixel's estimate
-    /// rests on one difference (a chi-square of one degree of freedom): average it over
-    /// pixels (a tile, the image) before deciding anything.
+    /// by chance are those whose d is large). The relMSE's denominator stands for truth^2: it is
+    /// max(0, A B), whose expectation is truth^2 (the halves are independent), where mean^2's
+    /// is truth^2 + Var(mean): with mean^2, a pixel whose mean a rare bright frame raised
+    /// divided its own large difference by its own large square, and the glossy box's and the
+    /// glass sphere's estimates were 0.5x to 0.6x the true relMSE after 4 to 8 frames. What
+    /// this cannot see: a bias common to all frames (the blur the filter keeps where w = 1,
+    /// the converged estimator's remaining bias), w's own dependence on the data, and a
+    /// denominator that is still noisy where one half alone holds a bright frame (its A B grows
+    /// with that frame, if only linearly). A bias of the first frame alone (the paper's clamp,
+    /// which the converging estimator keeps in frame 0) is seen: it is in one half only, so (A -
+    /// B)^2 nA nB / n^2 holds b^2 / n^2 times (other half's frames) / (its half's frames), about
+    /// the mean's squared bias b^2 / n^2. One pixel's estimate rests on one difference (a
+    /// chi-square of one degree of freedom): average it over pixels (a tile, the image) before
+    /// deciding anything.
     void meanRow(int y, int frames, const double* const* variance, glm::vec3* out, float* error,
                  lanes::Isa isa = lanes::bestIsa()) const;
     /// The rows [first, second) whose variance the mean of row y reads.

@@ -235,6 +235,21 @@ TEST(RowAccumulator, EstimatesTheRelMseOfNoiseOfAKnownSpread) {
         }
 }
 
+// The halves are aligned blocks of 2^j frames (each stratified as the whole sequence of pixel
+// positions is), alternating from block to block, and both have a frame from
+// kFirstEstimateFrames on, never before.
+TEST(RowAccumulator, HalvesAreAlternateBlocksOfPowersOfTwoFrames) {
+    int nA = 0;
+    for (int frame = 0; frame < 4096; ++frame) {
+        int j = 0;
+        while ((2 << j) <= frame) ++j;  // frame in [2^j, 2^(j+1)); frames 0 and 1 with j = 0
+        EXPECT_EQ(RowAccumulator::inFirstHalf(frame), frame >= 2 && j % 2 == 1) << frame;
+        nA += RowAccumulator::inFirstHalf(frame);
+        const int n = frame + 1;
+        EXPECT_EQ(nA > 0 && nA < n, n >= RowAccumulator::kFirstEstimateFrames) << n << " frames";
+    }
+}
+
 // A bias of the first frame alone (the paper's clamp in frame 0 of an accumulation) is in one
 // half-mean only: with no noise at all, the estimate is the mean's squared bias b^2 / n^2,
 // relative, times the ratio of the halves' frame counts (1 when they are equal).
@@ -256,9 +271,10 @@ TEST(RowAccumulator, SeesTheFirstFramesBias) {
         }
         // Frame 0's half holds its bias: (A - B)^2 nA nB / n^2 = b^2 / n^2 x (other / own).
         const double own = RowAccumulator::inFirstHalf(0) ? nA : n - nA, other = n - own;
-        const double shown = truth + bias / n;
+        // The denominator: A B, frame 0's half-mean times the other's.
+        const double ownMean = truth + bias / own;
         const double expected =
-            (double(bias) / n) * (bias / n) * (other / own) / (shown * shown + 0.01);
+            (double(bias) / n) * (bias / n) * (other / own) / (ownMean * truth + 0.01);
         EXPECT_NEAR(estimate, expected, 1e-6 * expected) << n << " frames";
     }
 }
