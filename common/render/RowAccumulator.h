@@ -46,9 +46,10 @@ class RowAccumulator {
     /// Why blocks: a pixel's position in its footprint is one Sobol' sequence over the frames,
     /// and an aligned block of 2^j of its points is itself stratified (PixelSampler). A half
     /// made of such blocks is stratified as the whole is, only coarser, so at a pixel cut by
-    /// an edge its mean errs about as the whole's does: the estimate is 1.9x to 3.6x the true
-    /// squared error of a pure edge (PixelSampler_test's model), against 2.5x to 20x with one
-    /// frame of each pair in each half at random, which made each half a random pick.
+    /// an edge its mean errs about as the whole's does: the estimate is 2.4x to 3.9x the true
+    /// squared error of a pure edge from 8 to 256 frames (PixelSampler_test's model), where it
+    /// was 2x to 19x with one frame of each pair in each half at random, each half a random
+    /// pick of the points.
     /// Not even against odd frames: the even points of a Sobol' dimension lie in [0, 1/2) and
     /// the odd ones in [1/2, 1), so even and odd frames sample different halves of the domain
     /// and their means differ by a bias that no number of frames removes (measured: the
@@ -87,15 +88,15 @@ class RowAccumulator {
     /// by chance are those whose d is large). The relMSE's denominator stands for truth^2: it is
     /// max(0, A B), whose expectation is truth^2 (the halves are independent), where mean^2's
     /// is truth^2 + Var(mean): with mean^2, a pixel whose mean a rare bright frame raised
-    /// divided its own large difference by its own large square, and the glossy box's and the
-    /// glass sphere's estimates were 0.5x to 0.6x the true relMSE after 4 to 8 frames. What
+    /// divided its own large difference by its own large square (docs/ERROR_ESTIMATE.md has
+    /// the figures). What
     /// this cannot see: a bias common to all frames (the blur the filter keeps where w = 1,
     /// the converged estimator's remaining bias), w's own dependence on the data, and a
     /// denominator that is still noisy where one half alone holds a bright frame (its A B grows
     /// with that frame, if only linearly). A bias of the first frame alone (the paper's clamp,
-    /// which the converging estimator keeps in frame 0) is seen: it is in one half only, so (A -
-    /// B)^2 nA nB / n^2 holds b^2 / n^2 times (other half's frames) / (its half's frames), about
-    /// the mean's squared bias b^2 / n^2. One pixel's estimate rests on one difference (a
+    /// which the converging estimator keeps in frame 0) is seen: it is in one half only, so
+    /// (A - B)^2 nA nB / n^2 holds b^2 / n^2 times (other half's frames) / (its half's frames),
+    /// about the mean's squared bias b^2 / n^2. One pixel's estimate rests on one difference (a
     /// chi-square of one degree of freedom): average it over pixels (a tile, the image) before
     /// deciding anything.
     void meanRow(int y, int frames, const double* const* variance, glm::vec3* out, float* error,
