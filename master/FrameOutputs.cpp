@@ -100,7 +100,26 @@ bool FrameOutputs::writeOutputs() const {
             all = false;
         }
     }
+    if (!options_.errorOutput.empty()) {
+        try {
+            writeImage(options_.errorOutput, errorImage(), 0.0f);
+            spdlog::info("wrote {}", options_.errorOutput.string());
+        } catch (const std::exception& e) {
+            spdlog::error("--error-output {}: {}", options_.errorOutput.string(), e.what());
+            all = false;
+        }
+    }
     return all;
+}
+
+Image FrameOutputs::errorImage() const {
+    const Image& shown = compositor_.shown();
+    Image out(shown.width, shown.height);
+    // Without accumulation (or before its third frame) there is no estimate: zeros.
+    const std::vector<float>& error = compositor_.pixelRelMse();
+    if (error.size() == out.pixels.size())
+        for (std::size_t i = 0; i < error.size(); ++i) out.pixels[i] = glm::vec3(error[i]);
+    return out;
 }
 
 void FrameOutputs::startView(ControlServer::Handler handler) {

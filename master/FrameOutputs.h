@@ -44,11 +44,14 @@ class FrameOutputs {
     void snapshot(std::string path, ControlServer::Reply reply, std::uint32_t fromFrame);
     /// The session ends: the view closes, snapshots still waiting are answered.
     void close();
-    /// Writes the compositor's image to every --output; one that fails (logged) does not stop
-    /// the others. Returns whether all were written.
+    /// Writes the compositor's image to every --output, and its estimated relMSE per pixel to
+    /// --error-output; one that fails (logged) does not stop the others. Returns whether all
+    /// were written.
     bool writeOutputs() const;
 
   private:
+    /// The estimated relMSE per pixel (FrameCompositor::pixelRelMse) as an image, R = G = B.
+    Image errorImage() const;
     struct ViewFrame {
         std::shared_ptr<const Image> image;
         std::string status;

@@ -11,6 +11,9 @@ namespace igi {
 struct MasterOptions {
     std::filesystem::path scene;
     std::vector<std::filesystem::path> outputs;  ///< .png and/or .exr, written at the end
+    /// .exr written at the end: the accumulated image's estimated relMSE per pixel
+    /// (FrameCompositor::pixelRelMse), empty: none.
+    std::filesystem::path errorOutput;
     int frames = 1;  ///< 0: until stopped (control "stop", SIGINT or SIGTERM)
     /// Rendering ends once the accumulated image's estimated relMSE (FrameCompositor) is at or
     /// below this (0: no target), or after timeLimitSeconds of rendering (0: no limit), or

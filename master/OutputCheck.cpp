@@ -48,4 +48,11 @@ void checkImageOutput(const fs::path& path, const std::string& flag) {
     checkWritableFolder(path, flag);
 }
 
+void checkErrorOutput(const fs::path& path) {
+    if (path.extension() != ".exr")
+        refuse("--error-output", path,
+               "must be an .exr (linear relMSE values; a tone-mapped .png would show them black)");
+    checkWritableFolder(path, "--error-output");
+}
+
 }  // namespace igi

@@ -14,4 +14,8 @@ void checkWritableFolder(const std::filesystem::path& path, const std::string& f
 /// checkWritableFolder, and a type writeImage knows (.png or .exr).
 void checkImageOutput(const std::filesystem::path& path, const std::string& flag);
 
+/// checkImageOutput for --error-output, which must be an .exr: relMSE values are linear and
+/// mostly far below one, which a tone-mapped .png would show as black.
+void checkErrorOutput(const std::filesystem::path& path);
+
 }  // namespace igi

@@ -36,6 +36,22 @@ TEST(OutputCheck, RefusesTypesAndFoldersBeforeTheRun) {
     fs::remove_all(dir);
 }
 
+// --error-output holds relMSE values, linear and mostly far below one: an .exr only.
+TEST(OutputCheck, ErrorOutputMustBeAnExrInAWritableFolder) {
+    const auto errorOfErrorOutput = [](const fs::path& path) -> std::string {
+        try {
+            checkErrorOutput(path);
+        } catch (const std::invalid_argument& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_CONTAINS(errorOfErrorOutput("error.png"), "--error-output error.png: must be an .exr");
+    EXPECT_CONTAINS(errorOfErrorOutput("/proc/error.exr"),
+                    "--error-output /proc/error.exr: cannot write in the folder /proc");
+    EXPECT_EQ(errorOfErrorOutput(fs::temp_directory_path() / "error.exr"), "");
+}
+
 TEST(OutputCheck, MakesMissingFoldersAndLeavesNothingBehind) {
     const fs::path dir =
         fs::temp_directory_path() / ("igi-outputcheck-" + std::to_string(getpid()));

@@ -100,6 +100,9 @@ int main(int argc, char** argv) {
                  "emitter gets one anyway)");
     app.add_option("--output", outputs,
                    "image to write at the end (.png tone-mapped, .exr linear); repeatable");
+    app.add_option("--error-output", o.errorOutput,
+                   "an .exr of the accumulated image's estimated relMSE per pixel, written at the "
+                   "end (docs/ERROR_ESTIMATE.md), the same value in R, G and B");
     auto* framesOpt =
         app.add_option("--frames", o.frames,
                        "frames to render (0: until stopped by igi-ctl stop or a signal; "
@@ -421,6 +424,7 @@ int main(int argc, char** argv) {
         // Every file the run will write, checked before the first frame: a mistake found
         // after an hour of rendering costs the hour.
         for (const auto& out : o.outputs) igi::checkImageOutput(out, "--output");
+        if (!o.errorOutput.empty()) igi::checkErrorOutput(o.errorOutput);
         if (!o.outputSequence.empty()) {
             igi::checkSequencePattern(o.outputSequence);
             igi::checkImageOutput(igi::sequencePath(o.outputSequence, 0), "--output-sequence");

@@ -95,7 +95,7 @@ TEST(TargetError, TimeLimitEndsARunWithoutAFrameCount) {
 TEST(TargetError, ALiveSessionStaysIdleAtItsTargetUntilStopped) {
     const fs::path dir = scratchDir("target-live");
     auto args = sceneArgs(0);
-    // A target the second frame meets: the session must stay for igi-ctl.
+    // A target the first estimated frame (the third) meets: the session must stay for igi-ctl.
     args.insert(args.end(), {"--local-clients", "1", "--control", "127.0.0.1:0", "--target-error",
                              "1", "--output", (dir / "live.png").string()});
     const fs::path log = dir / "master.log";
@@ -131,6 +131,45 @@ TEST(TargetError, ALiveSessionStaysIdleAtItsTargetUntilStopped) {
     ASSERT_EQ(ctl({"stop"}).exitCode, 0);
     ASSERT_EQ(waitProcess(master, 120), 0) << readFile(log);
     EXPECT_TRUE(fs::exists(dir / "live.png"));
+    fs::remove_all(dir);
+}
+
+// --error-output: the estimate per pixel, whose mean is the image's estimate that the
+// statistics give for the last frame.
+TEST(TargetError, ErrorOutputHoldsTheEstimatePerPixel) {
+    const fs::path dir = scratchDir("error-output");
+    const ProcessResult run =
+        runMaster(dir / "run.log", 8,
+                  {"--stats-json", (dir / "s.json").string(), "--output",
+                   (dir / "image.exr").string(), "--error-output", (dir / "error.exr").string()});
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const Image error = readFiniteImage(dir / "error.exr");
+    const Image image = readFiniteImage(dir / "image.exr");
+    ASSERT_EQ(error.width, image.width);
+    ASSERT_EQ(error.height, image.height);
+    double sum = 0.0;
+    std::size_t positive = 0;
+    for (const glm::vec3& p : error.pixels) {
+        ASSERT_GE(p.x, 0.0f);
+        ASSERT_EQ(p.x, p.y);
+        ASSERT_EQ(p.x, p.z);
+        sum += p.x;
+        positive += p.x > 0.0f;
+    }
+    EXPECT_GT(positive, error.pixels.size() / 2) << "most pixels have some noise after 8 frames";
+    const double expected = readJson(dir / "s.json")["frames"].back()["estimated_rel_mse"];
+    EXPECT_NEAR(sum / double(error.pixels.size()), expected, 1e-6 * expected);
+    fs::remove_all(dir);
+}
+
+TEST(TargetError, ErrorOutputMustBeAnExr) {
+    const fs::path dir = scratchDir("error-output-png");
+    const ProcessResult r =
+        runMaster(dir / "bad.log", 1, {"--error-output", (dir / "error.png").string()});
+    EXPECT_NE(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "--error-output")) << r.output;
+    EXPECT_TRUE(contains(r.output, "must be an .exr")) << r.output;
+    EXPECT_FALSE(contains(r.output, "clients ready")) << "refused before rendering";
     fs::remove_all(dir);
 }
 
