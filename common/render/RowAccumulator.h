@@ -45,8 +45,8 @@ class RowAccumulator {
     /// (2-3, 8-15, 32-63, ...), the others (0-1, 4-7, 16-31, ...) to the second.
     /// Why blocks: a pixel's position in its footprint is one Sobol' sequence over the frames,
     /// and an aligned block of 2^j of its points is itself stratified (PixelSampler). A half
-    /// made of such blocks is stratified as the whole is, only coarser, so at a pixel cut by
-    /// an edge its mean errs about as the whole's does: the estimate is 2.4x to 3.9x the true
+    /// made of such blocks is stratified as the whole is, only coarser (and holds as many even
+    /// frames as odd ones), so at a pixel cut by an edge the estimate is 2.4x to 3.9x the true
     /// squared error of a pure edge from 8 to 256 frames (PixelSampler_test's model), where it
     /// was 2x to 19x with one frame of each pair in each half at random, each half a random
     /// pick of the points.
