@@ -14,8 +14,7 @@ void ShownError::shown(int accumulated, const FrameCompositor& compositor,
     image_ = worstTile_ = 0;
     tilesAbove_ = 0;
     regionErrors_.clear();
-    // Until both halves of the estimate have a frame, there is no spread to see.
-    if (accumulated < RowAccumulator::kFirstEstimateFrames) return;
+    if (!estimated()) return;  // until both halves have a frame, there is no spread to see
     image_ = compositor.estimatedRelMse();
     stats.estimatedRelMse = image_;
     // Per tile region (the cells of one region share its pixels): the worst, and how many are
@@ -36,7 +35,7 @@ void ShownError::shown(int accumulated, const FrameCompositor& compositor,
 std::string ShownError::targetMet() const {
     // Asked as each frame is shown: the first frame whose estimate is at or below the target
     // ends the rendering, with its image.
-    if (target_ > 0 && accumulated_ >= RowAccumulator::kFirstEstimateFrames && image_ <= target_)
+    if (target_ > 0 && estimated() && image_ <= target_)
         return fmt::format("estimated relMSE {:.3g} <= --target-error {:.3g} after {} frames",
                            image_, target_, accumulated_);
     return {};
@@ -46,10 +45,9 @@ nlohmann::json ShownError::json(double fps) const {
     const auto orNull = [](const std::optional<double>& v) {
         return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
     };
-    nlohmann::json j = {{"estimated_rel_mse", accumulated_ >= RowAccumulator::kFirstEstimateFrames
-                                                  ? nlohmann::json(image_)
-                                                  : nlohmann::json()}};
-    if (accumulated_ >= RowAccumulator::kFirstEstimateFrames) {
+    nlohmann::json j = {
+        {"estimated_rel_mse", estimated() ? nlohmann::json(image_) : nlohmann::json()}};
+    if (estimated()) {
         j["worst_tile_rel_mse"] = worstTile_;
         if (target_ > 0) j["tiles_above_target"] = {tilesAbove_, int(regionErrors_.size())};
     }

@@ -40,6 +40,8 @@ class ShownError {
     nlohmann::json json(double fps) const;
 
   private:
+    /// Whether the frame shown has an estimate: both of its halves have a frame.
+    bool estimated() const { return accumulated_ >= RowAccumulator::kFirstEstimateFrames; }
     double target_;
     ErrorForecast forecast_;  ///< of the current accumulation
     int accumulated_ = 0;
