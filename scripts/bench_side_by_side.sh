@@ -5,16 +5,18 @@
 # the medians of: client shadow rays / raw rtcOccluded16 per CPU second, and client CPU seconds
 # per frame; then NEW's frame time over BASE's (median of the per-run ratios).
 #
-# igi-bench hands every tile of a frame to its thread pool at once, so a frame's tile buffers
-# (six planes of a 32 x 32 tile: 64 KB a tile, about 20 MB a frame at 640 x 480) are
-# allocated together and freed together; glibc gives the freed top of its heap back to the
-# system and the next frame faults it in again. That cost 15 to 25 % of the client CPU seconds
+# igi-bench used to hand every tile of a frame to its thread pool at once, so a frame's tile
+# buffers (six planes of a 32 x 32 tile: 64 KB a tile, about 20 MB a frame at 640 x 480) were
+# allocated together and freed together; glibc gave the freed top of its heap back to the
+# system and the next frame faulted it in again. That cost 15 to 25 % of the client CPU seconds
 # on CornellBox-Original, in every build alike, and scattered from run to run. A client in a
 # session, which receives its tiles a few at a time, does not pay it (igi-master
 # --local-clients 1, 24 frames: 41.7 K page faults in all its processes as is, 40.9 K with the
-# thresholds raised; igi-bench, 8 frames: 24 K to 29 K against 18 K). So by default both builds
-# run with glibc's trim and mmap thresholds raised (GLIBC_TUNABLES below), which measures the
-# rendering alone; --default-malloc measures as before.
+# thresholds raised; igi-bench, 8 frames: 24 K to 29 K against 18 K). igi-bench now holds a
+# few tiles at a time as a session's client does (--tiles-in-flight), but builds from before
+# that still hand out every tile: so by default both builds run with glibc's trim and mmap
+# thresholds raised (GLIBC_TUNABLES below), which measures the rendering alone in either;
+# --default-malloc measures without.
 #
 # Usage: scripts/bench_side_by_side.sh BASE_BIN NEW_BIN [--runs 3] [--frames 4]
 #                                      [--segments 4000000] [--width 640 --height 480]

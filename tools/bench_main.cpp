@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
     std::string sceneFile;
     unsigned threads = 0;
     std::size_t segments = 4'000'000;
-    int frames = 4, width = 0, height = 0;
+    int frames = 4, width = 0, height = 0, tilesInFlight = 0;
     bool allowOutsidePaths = false, accumulated = false;
     app.add_option("--scene", sceneFile, "scene file or .obj")->required();
     app.add_flag("--allow-outside-paths", allowOutsidePaths,
@@ -166,6 +166,11 @@ int main(int argc, char** argv) {
     app.add_flag("--accumulated", accumulated,
                  "render the frames as frames 1.. of an accumulation (a view held still: the "
                  "converging estimator), not each as the first frame after a change");
+    app.add_option("--tiles-in-flight", tilesInFlight,
+                   "tiles the client holds at once, as the master's queue depth gives them "
+                   "(0: 2 + threads / 8, the depth for tiles slower than 20 ms)")
+        ->check(CLI::Range(0, 1000000))
+        ->capture_default_str();
     app.add_option("--width", width, "image width (0: the scene's)");
     app.add_option("--height", height, "image height (0: the scene's)");
     CLI11_PARSE(app, argc, argv);
@@ -195,22 +200,36 @@ int main(int argc, char** argv) {
         const auto& s = scene.render;
         const auto tiles = igi::makeTiles(scene.image.width, scene.image.height, s.interleaveX,
                                           s.interleaveY, s.tileSize);
+        // A client in a session holds a few tiles at a time (the master's queue depth: at
+        // least 2 + threads / 8), so the bench keeps as many in flight and hands out the next
+        // when one is done. Handing every tile of a frame out at once allocated all their
+        // buffers together and freed them together: glibc gave the freed heap back and the next
+        // frame faulted it in again, 15 to 25 % of a small scene's client CPU that a session's
+        // client does not pay.
+        const std::size_t inFlight =
+            std::size_t(tilesInFlight > 0 ? tilesInFlight : 2 + int(pool.size()) / 8);
         // One frame of the client's: its rays and shadow rays.
         auto renderFrame = [&](std::uint32_t f) {
             std::uint64_t rays = 0, shadowRays = 0;
-            std::atomic<std::size_t> remaining{tiles.size()};
-            std::mutex mutex;
-            std::condition_variable done;
-            for (std::uint32_t t = 0; t < tiles.size(); ++t) {
+            std::size_t remaining = tiles.size(), next = 0;
+            // Recursive: a tile without chunks reports at once, inside render().
+            std::recursive_mutex mutex;
+            std::condition_variable_any done;
+            // Hands out the next tile, if any; called with `mutex` held.
+            std::function<void()> handOut = [&] {
+                if (next == tiles.size()) return;
+                const auto t = std::uint32_t(next++);
                 renderer.render(pool, f, accumulated ? f + 1 : 0, t, tiles[t],
                                 [&](igi::proto::TileResult&& r) {
                                     std::lock_guard lock(mutex);
                                     rays += r.stats.rays;
                                     shadowRays += r.stats.shadowRays;
+                                    handOut();
                                     if (--remaining == 0) done.notify_all();
                                 });
-            }
+            };
             std::unique_lock lock(mutex);
+            for (std::size_t k = 0; k < inFlight; ++k) handOut();
             done.wait(lock, [&] { return remaining == 0; });
             return std::pair{rays, shadowRays};
         };
