@@ -269,6 +269,7 @@ int main(int argc, char** argv) {
             {"scene_layout", traceable.layout() == igi::SceneLayout::Flat ? "flat" : "instanced"},
             {"client_accumulated", accumulated},
             {"client_frames", frames},
+            {"client_tiles_in_flight", inFlight},
             {"client_width", scene.image.width},
             {"client_height", scene.image.height},
             {"client_seconds", client.wall},
