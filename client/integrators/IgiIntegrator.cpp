@@ -175,7 +175,7 @@ void IgiIntegrator::gatherLightAtEdges(const Pixel* pixels, int count, std::uint
         [&](int j, bool found, const SurfacePoint& hit) {
             seen[std::size_t(j / k)] += seenDirectly(found, hit, directions[std::size_t(j)]);
         },
-        counters);
+        counters, TraceableScene::HitDetail::Emission);  // seenDirectly reads no more
     for (std::size_t m = 0; m < marked.size(); ++m)
         results[marked[m]].unfiltered += seen[m] / float(k);
 }
@@ -208,7 +208,8 @@ void IgiIntegrator::traceContinuations(std::vector<Continuation>& rays,
 }
 
 template <class Ray, class Land>
-void IgiIntegrator::traceInPackets(int count, Ray&& ray, Land&& land, RayCounters& counters) const {
+void IgiIntegrator::traceInPackets(int count, Ray&& ray, Land&& land, RayCounters& counters,
+                                   TraceableScene::HitDetail detail) const {
     const int width = scene_.packetWidth();
     glm::vec3 origins[TraceableScene::kMaxPacket], directions[TraceableScene::kMaxPacket];
     float tfar[TraceableScene::kMaxPacket];
@@ -223,7 +224,7 @@ void IgiIntegrator::traceInPackets(int count, Ray&& ray, Land&& land, RayCounter
         if (n == 1)  // a packet of one ray costs more than the ray alone
             found[0] = scene_.intersect(origins[0], directions[0], kInfinity, hits[0], counters);
         else
-            scene_.intersectPacket(origins, directions, tfar, n, hits, found, counters);
+            scene_.intersectPacket(origins, directions, tfar, n, hits, found, counters, detail);
         for (int k = 0; k < n; ++k) land(begin + k, found[k], hits[k]);
     }
 }

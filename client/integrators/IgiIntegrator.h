@@ -62,9 +62,10 @@ class IgiIntegrator {
     glm::vec3 seenDirectly(bool found, const SurfacePoint& hit, glm::vec3 direction) const;
     void traceContinuations(std::vector<Continuation>& rays, RayCounters& counters) const;
     /// Rays ray(0 .. count - 1) (origin, direction), traced in packets of the scene's width;
-    /// land(k, found, hit) takes each one's result.
+    /// land(k, found, hit) takes each one's result, filled as `detail` asks.
     template <class Ray, class Land>
-    void traceInPackets(int count, Ray&& ray, Land&& land, RayCounters& counters) const;
+    void traceInPackets(int count, Ray&& ray, Land&& land, RayCounters& counters,
+                        TraceableScene::HitDetail detail = TraceableScene::HitDetail::Full) const;
     /// The first hit's emission, its non-delta end point, and the rays that leave it along its
     /// mirror and glass lobes (appended to `continuations`); on rough glass, the light of
     /// delta lights through it (roughGlassDeltaLight).

@@ -269,7 +269,7 @@ void TraceableScene::occludedPacket(const ShadowRay* rays, int count, bool* bloc
 
 void TraceableScene::intersectPacket(const glm::vec3* origins, const glm::vec3* directions,
                                      const float* tfar, int count, SurfacePoint* hits, bool* found,
-                                     RayCounters& counters) const {
+                                     RayCounters& counters, HitDetail detail) const {
     counters.rays += std::uint64_t(count);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -300,6 +300,17 @@ void TraceableScene::intersectPacket(const glm::vec3* origins, const glm::vec3* 
             return;
         }
         HitVertices vertices[N];
+        if (detail == HitDetail::Emission) {
+            // What a hit sends needs no albedo and no normal map: the light-edge rays' hits
+            // (most of their cost was the normal map's texels, in the Sponza arcades).
+            for (int i = 0; i < count; ++i)
+                if (found[i]) {
+                    fillGeometry(hit.geomID[i], hit.instID[0][i], hit.primID[i], hit.u[i], hit.v[i],
+                                 p.packet.ray.tfar[i], hits[i]);
+                    fillEmission(hits[i]);
+                }
+            return;
+        }
         for (int i = 0; i < count; ++i)
             if (found[i])
                 vertices[i] = fillGeometry(hit.geomID[i], hit.instID[0][i], hit.primID[i], hit.u[i],
@@ -432,12 +443,16 @@ void TraceableScene::prefetchTextures(const HitVertices& h, const SurfacePoint& 
     }
     if (!mesh.colors.empty())  // glTF COLOR_0: base colour x texture x vertex colour
         hit.albedo *= w * mesh.colors[t.x] + u * mesh.colors[t.y] + v * mesh.colors[t.z];
+    fillEmission(hit);
+    if (hit.material->perturbsNormal() && !mesh.uvs.empty())
+        applyNormalMap(m, t, u, v, h.interpolated, hit);
+}
+
+[[gnu::always_inline]] inline void TraceableScene::fillEmission(SurfacePoint& hit) const {
     hit.emissionTexel =
         hit.material->emissionTexture >= 0
             ? (*textures_)[hit.material->emissionTexture].sample(hit.material->emissionUv(hit.uv))
             : glm::vec3(1.0f);
-    if (hit.material->perturbsNormal() && !mesh.uvs.empty())
-        applyNormalMap(m, t, u, v, h.interpolated, hit);
 }
 
 void TraceableScene::applyNormalMap(const MeshData& m, glm::uvec3 t, float u, float v, glm::vec3 n,

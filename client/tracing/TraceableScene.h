@@ -75,10 +75,17 @@ class TraceableScene {
     struct ShadowPacket;
     template <int N>
     void occluded(ShadowPacket<N>& packet, int count, bool* blocked, RayCounters& counters) const;
+    /// How much of a hit intersectPacket fills.
+    enum class HitDetail {
+        Full,      ///< everything, as intersect()
+        Emission,  ///< what the hit emits only: its geometry, material and emission texel
+                   ///< (no albedo, roughness, vertex colour or normal map: the light-edge rays)
+    };
     /// Up to kMaxPacket closest-hit rays in one packet, as intersect() each: found[i] tells
-    /// whether ray i hit, and then hits[i] is its hit.
+    /// whether ray i hit, and then hits[i] is its hit (only the part `detail` asks for).
     void intersectPacket(const glm::vec3* origins, const glm::vec3* directions, const float* tfar,
-                         int count, SurfacePoint* hits, bool* found, RayCounters& counters) const;
+                         int count, SurfacePoint* hits, bool* found, RayCounters& counters,
+                         HitDetail detail = HitDetail::Full) const;
 
     /// A triangle in world space, for lights and caustic targets.
     struct WorldTriangle {
@@ -208,6 +215,8 @@ class TraceableScene {
                              float v, float t, SurfacePoint& hit) const;
     void prefetchTextures(const HitVertices& h, const SurfacePoint& hit) const;
     void fillTextures(const HitVertices& h, SurfacePoint& hit) const;
+    /// The emission texel only (HitDetail::Emission).
+    void fillEmission(SurfacePoint& hit) const;
     /// Replaces hit.shadingNormal by the normal or bump map's (the material has one, the mesh uvs);
     /// `n` is the unit interpolated normal (or the face's) before it was turned to ng's side.
     void applyNormalMap(const MeshData& m, glm::uvec3 t, float u, float v, glm::vec3 n,
