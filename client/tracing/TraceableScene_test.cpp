@@ -109,6 +109,66 @@ TEST(TraceableScene, PacketsOfClosestHitRaysFindWhatSingleRaysFind) {
     }
 }
 
+// The light-edge rays ask a packet for what its hits emit only (HitDetail::Emission): that
+// part is what the full fill gives, on a textured scene (the fill of one without textures is
+// always whole), while the albedo, which such hits skip, is left as it was.
+TEST(TraceableScene, APacketFilledForEmissionFindsWhatTheFullFillEmits) {
+    Scene scene;
+    Texture stripes;  // 4 x 1 texels along u: two bright, two dark
+    stripes.path = "stripes";
+    stripes.width = 4;
+    stripes.height = 1;
+    stripes.texels = {glm::vec3(1.0f), glm::vec3(0.8f), glm::vec3(0.1f), glm::vec3(0.0f)};
+    stripes.average = glm::vec3(0.475f);
+    scene.textures.push_back(stripes);
+    Material floor = testing::diffuse(glm::vec3(0.7f));
+    floor.diffuseTexture = 0;
+    Material screen = testing::diffuse(glm::vec3(0.0f));
+    screen.emission = glm::vec3(4.0f);
+    screen.emissionTexture = 0;
+    scene.materials = {floor, screen};
+    Mesh ground = testing::makeQuad({-2, -2, 0}, {4, 0, 0}, {0, 4, 0}, 0);  // faces +z
+    ground.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    Mesh emitter = testing::makeQuad({-1, -1, 1.5f}, {0, 2, 0}, {2, 0, 0}, 1);  // faces -z
+    emitter.uvs = {{0, 0}, {0, 0}, {1, 0}, {1, 0}};
+    scene.meshes = {ground, emitter};
+    EmbreeDevice device;
+    SceneGeometry geometry(device, scene);
+    TraceableScene traceable(geometry);
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    int emitters = 0, floors = 0;
+    for (int round = 0; round < 100; ++round) {
+        const int count = 2 + round % (TraceableScene::kMaxPacket - 1);
+        glm::vec3 origins[TraceableScene::kMaxPacket], directions[TraceableScene::kMaxPacket];
+        float tfar[TraceableScene::kMaxPacket];
+        for (int i = 0; i < count; ++i) {  // from between the two, up or down
+            origins[i] = glm::vec3(0.5f * unit(random), 0.5f * unit(random), 0.7f);
+            directions[i] =
+                glm::normalize(glm::vec3(unit(random), unit(random), i % 2 ? 1.0f : -1.0f));
+            tfar[i] = INFINITY;
+        }
+        SurfacePoint full[TraceableScene::kMaxPacket], emission[TraceableScene::kMaxPacket];
+        bool foundFull[TraceableScene::kMaxPacket], foundEmission[TraceableScene::kMaxPacket];
+        RayCounters counters;
+        traceable.intersectPacket(origins, directions, tfar, count, full, foundFull, counters);
+        traceable.intersectPacket(origins, directions, tfar, count, emission, foundEmission,
+                                  counters, TraceableScene::HitDetail::Emission);
+        for (int i = 0; i < count; ++i) {
+            ASSERT_EQ(foundEmission[i], foundFull[i]);
+            if (!foundFull[i]) continue;
+            EXPECT_EQ(emission[i].material, full[i].material);
+            EXPECT_EQ(emission[i].position, full[i].position);
+            EXPECT_EQ(emission[i].geometricNormal, full[i].geometricNormal);
+            EXPECT_EQ(emission[i].emissionTexel, full[i].emissionTexel);
+            EXPECT_EQ(emission[i].albedo, glm::vec3(0.0f));  // not filled
+            (full[i].material->isEmissive() ? emitters : floors)++;
+        }
+    }
+    EXPECT_GT(emitters, 200);
+    EXPECT_GT(floors, 200);
+}
+
 // A small scene is flat in every state; a large one is flat where its objects stand as loaded
 // and instanced once one moved. Both layouts find the same surfaces at the same scale.
 TEST(TraceableScene, FlatAndInstancedLayoutsFindTheSameSurfaces) {
