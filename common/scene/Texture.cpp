@@ -9,8 +9,18 @@ namespace igi {
 namespace {
 
 int wrap(int i, int n) {
+    // Within one period either side of it, as reduce() leaves most lookups: no division (an
+    // integer division per texel index was a visible part of the Sponza scenes' lookups).
+    if (i >= 0 && i < n) return i;
+    if (i < 0 && i >= -n) return i + n;
+    if (i >= n && i - n < n) return i - n;
     int r = i % n;
     return r < 0 ? r + n : r;
+}
+
+// fmod(f, period), which is f itself wherever |f| < period (most lookups): no division there.
+float reduceToPeriod(float f, float period) {
+    return std::fabs(f) < period ? f : std::fmod(f, period);
 }
 
 // A texel coordinate (the floor of a lookup's) brought near the image before it becomes an int,
@@ -20,11 +30,11 @@ float reduce(float f, int n, TextureWrap mode) {
         case TextureWrap::ClampToEdge:
             return std::clamp(f, -1.0f, static_cast<float>(n));
         case TextureWrap::MirroredRepeat:
-            return std::fmod(f, 2.0f * static_cast<float>(n));  // the period of a mirror
+            return reduceToPeriod(f, 2.0f * static_cast<float>(n));  // the period of a mirror
         case TextureWrap::Repeat:
             break;
     }
-    return std::fmod(f, static_cast<float>(n));
+    return reduceToPeriod(f, static_cast<float>(n));
 }
 
 // Texel index i (reduced) in [0, n), as `mode` continues the image past its edges.

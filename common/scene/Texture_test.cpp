@@ -84,6 +84,28 @@ TEST(TextureSample, ClampsAndMirrorsAsTheSamplerSays) {
     expectNear(mixed.sample({0.0f, 0.75f}), kA);
 }
 
+// A lookup one or many periods away finds the same texels with the same weights: near the
+// image the wrap needs no division, far from it it divides, and both must agree.
+TEST(TextureSample, LooksUpTheSameFarFromTheImageAsNearIt) {
+    Texture t;
+    t.width = 4;
+    t.height = 3;
+    for (int i = 0; i < 12; ++i) t.texels.push_back(glm::vec3(float(i), float(i * i), 1.0f));
+    for (TextureWrap mode : {TextureWrap::Repeat, TextureWrap::MirroredRepeat}) {
+        t.wrapU = t.wrapV = mode;
+        const float period = mode == TextureWrap::Repeat ? 1.0f : 2.0f;
+        // Texel centres, edges and points between them: exact in float, as are the shifts.
+        for (float u = -0.5f; u <= 1.5f; u += 0.0625f)
+            for (float v : {0.0f, 0.125f, 0.5f, 0.9375f}) {
+                const glm::vec3 near = t.sample({u, v});
+                for (float k : {-1000.0f, -3.0f, -2.0f, -1.0f, 1.0f, 2.0f, 3.0f, 1000.0f}) {
+                    ASSERT_EQ(t.sample({u + k * period, v}), near) << "u " << u << " k " << k;
+                    ASSERT_EQ(t.sample({u, v + k * period}), near) << "v " << v << " k " << k;
+                }
+            }
+    }
+}
+
 TEST(DecodeTexture, PpmIsReadTopRowFirstAndLinearized) {
     DiskFileSource disk(test::testdataDir() / "minimal");
     const Texture t = decodeTexture("checker.ppm", disk.read("checker.ppm"));
