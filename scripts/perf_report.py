@@ -547,6 +547,13 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
           "a glossy point evaluates its lobe and the VPL's for every connection and continues "
           "its path with single rays.")
     w("")
+    # Changes to the client's non-ray work, each measured side by side against the build
+    # before it (scripts/bench_side_by_side.sh, scripts/bit_identical.sh): written by hand in
+    # the document, kept here as they are.
+    w("<!-- BEGIN GENERATED non-ray-work -->")
+    w(generated_block(doc, "non-ray-work") or "Nothing measured by hand yet.")
+    w("<!-- END GENERATED non-ray-work -->")
+    w("")
 
     # 2 -----------------------------------------------------------------------------------------
     w("## 2. End-to-end frame rate at 640 x 480, paper settings")
