@@ -201,8 +201,11 @@ def main():
         w.writerows(all_rows)
     near_noise = [r for r in all_rows if within(r["ratio_noise"])]
     judged = [r for r in all_rows if r["true"] is not None]
-    # Each judged row is two points, one per session.
-    near_true = [x for r in judged for x in (r["ratio"], r["ratio_2"]) if within(x)]
+
+    def count(rows):
+        """Of the rows' points (two per row, one per session): how many within the limit, of how many."""
+        return len([x for r in rows for x in (r["ratio"], r["ratio_2"]) if within(x)]), 2 * len(rows)
+    near_true, points = count(judged)
     head = [f"- command: `{a.command}`",
             f"- machine: {started['nproc']} cores ({started['cpu']}); started {started['date']} (load {started['load']}), "
             f"finished {finished['date']} (load {finished['load']})",
@@ -211,11 +214,8 @@ def main():
             f"session's true relMSE (two points per scene and frame count); every point in "
             f"{os.path.relpath(a.csv, ROOT)}",
             f"- within a factor of {RATIO_LIMIT} of the between-sessions noise (session 1's estimate): "
-            f"{len(near_noise)} of {len(all_rows)}; of (true - floor): {len(near_true)} of {2 * len(judged)} "
+            f"{len(near_noise)} of {len(all_rows)}; of (true - floor): {near_true} of {points} "
             f"points with a reference"]
-
-    def count(rows):
-        return len([x for r in rows for x in (r["ratio"], r["ratio_2"]) if within(x)]), 2 * len(rows)
     criterion = [r for r in judged if bias_below_noise(r)]
     head.append(f"- where the shared bias is below the noise (shared bias^2 = the two sessions' mean true - floor "
                 f"- the noise between them, below that noise): {'%d of %d' % count(criterion)} points within "
@@ -226,8 +226,8 @@ def main():
                     f"{'%d of %d' % count(held)}")
     head.append("")
     report_util.splice(a.doc, {"error-estimate": "\n".join(head) + "\n" + "\n".join(blocks)}, log)
-    log(f"within {RATIO_LIMIT}x: {len(near_noise)} of {len(all_rows)} (noise), {len(near_true)} of "
-        f"{2 * len(judged)} (true - floor); {a.doc} and {a.csv} written")
+    log(f"within {RATIO_LIMIT}x: {len(near_noise)} of {len(all_rows)} (noise), {near_true} of {points} "
+        f"(true - floor); {a.doc} and {a.csv} written")
 
 
 if __name__ == "__main__":

@@ -43,6 +43,7 @@ TEST(Bench, TheClientsRaysDoNotDependOnTheTilesItHolds) {
         EXPECT_EQ((*j)["client_rays"], one["client_rays"]);
         EXPECT_EQ((*j)["client_shadow_rays"], one["client_shadow_rays"]);
     }
+    fs::remove_all(dir);
 }
 
 }  // namespace

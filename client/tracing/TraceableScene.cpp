@@ -299,7 +299,6 @@ void TraceableScene::intersectPacket(const glm::vec3* origins, const glm::vec3* 
                                      hit.v[i], p.packet.ray.tfar[i], hits[i]);
             return;
         }
-        HitVertices vertices[N];
         if (detail == HitDetail::Emission) {
             // What a hit sends needs no albedo and no normal map: the light-edge rays' hits
             // (most of their cost was the normal map's texels, in the Sponza arcades).
@@ -311,6 +310,7 @@ void TraceableScene::intersectPacket(const glm::vec3* origins, const glm::vec3* 
                 }
             return;
         }
+        HitVertices vertices[N];
         for (int i = 0; i < count; ++i)
             if (found[i])
                 vertices[i] = fillGeometry(hit.geomID[i], hit.instID[0][i], hit.primID[i], hit.u[i],

@@ -264,12 +264,12 @@ IGI_LANES void poolVariance(const Pool& p, const double* own, const double* colu
     }
 }
 
-/// The estimated relMSE of each pixel of row y's mean after `frames` (both halves have one)
-/// frames, in cell order, from the sums; `weight`: the filtered mean's weight in the blend
-/// (null: 1). RowAccumulator::meanRow says why: the
-/// noise, from the halves' difference, and with the unfiltered sums (withdrawBlur) the filter's
-/// blur, whose square is estimated without the noise it carries. With varying counts
-/// (l.counts) each pixel's own `frames` and `firstHalf`: 0 where a half has none.
+/// The estimated relMSE of each pixel of row y's mean after `frames` frames, in cell order,
+/// from the sums; `weight`: the filtered mean's weight in the blend (null: 1).
+/// RowAccumulator::meanRow says why: the noise, from the halves' difference, and with the
+/// unfiltered sums (withdrawBlur) the filter's blur, whose square is estimated without the
+/// noise it carries. 0 where a half has no frame; with varying counts (l.counts) each pixel's
+/// own `frames` and `firstHalf`.
 void estimateErrors(const Layout& l, const std::vector<double>& sums, int y, int frames,
                     int firstHalf, int width, const double* weight, double* error) {
     const double* counts = l.counts ? l.counts + std::size_t(y) * l.entries() : nullptr;
@@ -331,8 +331,7 @@ void writeErrors(const Mean& m, const std::vector<double>& sums, int y, int fram
                  const double* weight, float* error) {
     if (!error) return;
     const int width = m.order.width();
-    if (!m.l.counts &&
-        (frames < 2 || m.firstHalf < 1 || m.firstHalf >= frames)) {  // a half without a frame
+    if (!m.l.counts && (m.firstHalf < 1 || m.firstHalf >= frames)) {  // a half without a frame
         std::fill_n(error, width, 0.0f);
         return;
     }
