@@ -1050,5 +1050,24 @@ TEST(DocCommands, ProseNamesOnlyExistingFlagsAndScripts) {
     EXPECT_GE(commands, 10) << "inline commands found in the documents";
 }
 
+// docs/PERFORMANCE.md is written whole by scripts/perf_report.py, but some of its blocks come from
+// other scripts (shadow_rays_report.py, bench_view.sh, ...) or by hand: the report copies each from
+// the document it replaces. A block it does not copy is lost at the next regeneration, as the
+// shadow-rays block once was; the report refuses to write then, and this test says so sooner.
+TEST(DocCommands, PerformanceReportKeepsEveryBlockOfTheDocument) {
+    const std::string doc = readFile(sourceDir() / "docs" / "PERFORMANCE.md");
+    const std::string report = readFile(sourceDir() / "scripts" / "perf_report.py");
+    static const std::regex block(R"(<!-- BEGIN GENERATED ([^ ]+) -->)");
+    int blocks = 0;
+    for (std::sregex_iterator it(doc.begin(), doc.end(), block), end; it != end; ++it) {
+        ++blocks;
+        const std::string key = (*it)[1].str();
+        EXPECT_NE(report.find("generated_block(doc, \"" + key + "\")"), std::string::npos)
+            << "docs/PERFORMANCE.md has the block '" << key
+            << "', which scripts/perf_report.py does not keep";
+    }
+    EXPECT_GE(blocks, 6);
+}
+
 }  // namespace
 }  // namespace igi
