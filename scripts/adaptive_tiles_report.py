@@ -23,7 +23,6 @@ Python 3 standard library only (plus igi-compare and, for new references, oiioto
 """
 
 import argparse
-import csv
 import json
 import math
 import os
@@ -172,11 +171,7 @@ def main():
                       f"{info['spp_total']} spp, noise floor relMSE {num(info['noise_floor_relative_mse'])})\n\n"
                       f"Plain session, true relMSE - floor after n frames: {plain_curve}.\n\n{table(rows)}\n")
     finished = report_util.machine()
-    os.makedirs(os.path.dirname(a.csv), exist_ok=True)
-    with open(a.csv, "w", newline="", encoding="utf-8") as f:
-        w = csv.DictWriter(f, fieldnames=list(all_rows[0].keys()))
-        w.writeheader()
-        w.writerows(all_rows)
+    report_util.write_rows_csv(a.csv, all_rows)
     head = [f"- command: `{a.command}`",
             f"- machine: {started['nproc']} cores ({started['cpu']}); started {started['date']} (load {started['load']}), "
             f"finished {finished['date']} (load {finished['load']})",

@@ -23,7 +23,6 @@ Python 3 standard library only (plus igi-compare and, for new references, oiioto
 """
 
 import argparse
-import csv
 import hashlib
 import json
 import os
@@ -194,11 +193,7 @@ def main():
         tuned = " not tuned on," if spec.name in HELD_OUT_NAMES else ""
         blocks.append(f"#### {spec.name} ({a.width} x {a.height};{tuned} {what})\n\n{table(rows, info)}\n")
     finished = report_util.machine()
-    os.makedirs(os.path.dirname(a.csv), exist_ok=True)
-    with open(a.csv, "w", newline="", encoding="utf-8") as f:
-        w = csv.DictWriter(f, fieldnames=list(all_rows[0].keys()))
-        w.writeheader()
-        w.writerows(all_rows)
+    report_util.write_rows_csv(a.csv, all_rows)
     near_noise = [r for r in all_rows if within(r["ratio_noise"])]
     judged = [r for r in all_rows if r["true"] is not None]
 

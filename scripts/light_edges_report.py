@@ -15,7 +15,6 @@ Python 3 standard library only (plus igi-compare and, for new references, oiioto
 """
 
 import argparse
-import csv
 import json
 import os
 import statistics
@@ -120,11 +119,7 @@ def main():
             continue
         rows += measure(bench, spec, a)
     finished = report_util.machine()
-    os.makedirs(os.path.dirname(a.csv), exist_ok=True)
-    with open(a.csv, "w", newline="", encoding="utf-8") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
+    report_util.write_rows_csv(a.csv, rows)
     ks = sorted({r["frames"] for r in rows})
     head = [f"- command: `{a.command}`",
             f"- machine: {started['nproc']} cores ({started['cpu']}); started {started['date']} (load {started['load']}), "

@@ -2,6 +2,7 @@
 formatting numbers, describing the machine, and replacing the generated blocks of a document.
 Python 3 standard library only."""
 
+import csv
 import datetime
 import math
 import os
@@ -43,6 +44,16 @@ def machine():
     return {"uname": f"{u.system} {u.release} {u.machine}", "nproc": os.cpu_count(), "cpu": cpu,
             "date": datetime.datetime.now().isoformat(timespec="seconds"),
             "load": " ".join(f"{x:.2f}" for x in os.getloadavg()), "kernel": platform.release()}
+
+
+def write_rows_csv(path, rows):
+    """Writes rows (dicts with the same keys, the first row's order) to the CSV file path,
+    making its folder."""
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
 
 
 def splice(doc_path, parts, log):

@@ -20,7 +20,6 @@ for new references, oiiotool).
 """
 
 import argparse
-import csv
 import json
 import os
 import statistics
@@ -173,11 +172,7 @@ def main():
     if not rows:
         sys.exit("nothing measured")
     finished = report_util.machine()
-    os.makedirs(os.path.dirname(a.csv), exist_ok=True)
-    with open(a.csv, "w", newline="", encoding="utf-8") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
+    report_util.write_rows_csv(a.csv, rows)
     ks = sorted({r["frames"] for r in rows})
     head = [f"- command: `{a.command}`",
             f"- machine: {started['nproc']} cores ({started['cpu']}); started {started['date']} (load {started['load']}), "
