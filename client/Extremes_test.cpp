@@ -238,7 +238,7 @@ INSTANTIATE_TEST_SUITE_P(Integrators, SceneScale,
 
 struct IntensityCase {
     bool glossy;
-    std::uint32_t accumulation;  ///< 0: the paper's estimator; > 0: the converging one
+    std::uint32_t accumulation;  ///< 0: the first frame after a change; > 0: an accumulated one
 };
 void PrintTo(const IntensityCase& c, std::ostream* os) {
     *os << (c.glossy ? "glossy" : "diffuse") << ", accumulation " << c.accumulation;
@@ -322,8 +322,8 @@ TEST(Albedo, NearOneStaysFiniteAndBelowTheClosedSphereBound) {
     for (const auto& p : image.pixels) ASSERT_LT(p.x, bound) << "energy exploded";
 }
 
-// The same with Russian roulette, in accumulated frames (the first frame after a change is the
-// paper's walk): the walk's paths go on, each surviving a bounce with probability 0.999, so
+// The same with Russian roulette, which every frame has (an accumulated one here): the walk's
+// paths go on, each surviving a bounce with probability 0.999, so
 // nearly every path reaches the safety cap, and the image is the series truncated there,
 // finite and below the bound.
 TEST(Albedo, NearOneWithRouletteIsTheSeriesUpToTheCap) {

@@ -97,14 +97,18 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
                                          std::uint32_t setIndex, bool lightPaths,
                                          bool caustics) const {
     LightingSet set;
-    // The first frame after a change is what a user sees while moving: it stays the paper's
-    // estimator, as fast and as clean (the roulette's long paths are few and heavy, the
-    // compensation and the VPLs' photons cost rays and time). The frames accumulated after it
-    // add what it leaves out, so the running mean converges all the same: its first frame's
-    // bias weighs 1 / frames.
+    // The first frame after a change is what a user sees while moving. It has the light paths
+    // and the bound of the frames after it (Russian roulette past the paper's walk; with the
+    // compensation, the wider bound), which cost it 1.02 to 1.18 times the paper's time for
+    // 0.55 to 0.90 times its relMSE on ten of the eleven scenes measured, 1.02 on the Sponza
+    // arcades (docs/PERFORMANCE.md, "The first frame after a change"). What would
+    // restore the bound's cut (the compensation rays of the points without a glossy lobe) and
+    // the VPLs' photons cost rays and time that one frame does not repay: they begin with the
+    // frames accumulated after it, so the running mean converges all the same, the first
+    // frame's bias weighing 1 / frames.
     const bool accumulating = accumulation > 0;
     const bool compensate = settings_.clampCompensation == ClampCompensation::KolligKeller;
-    set.roulette = settings_.roulette && accumulating;
+    set.roulette = settings_.roulette;
     set.compensationShare = compensate && accumulating ? kCompensationShare : 0.0f;
     // Progressive parts shrink with the frame's place in the accumulation.
     const double shrink = progressiveScale(settings_.progressiveAlpha, accumulation);
@@ -113,8 +117,10 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
     // glossy lobe is left whole (it is not singular, only noisy).
     if (compensate)
         set.sharpnessBudget = accumulating ? settings_.glossyBound : kFirstFrameSharpnessBudget;
-    if (compensate && accumulating)
-        set.minDistance2 *= kAccumulatedClampScale * kAccumulatedClampScale;
+    // The other GI modes' first frames, whose VPLs are given (buildWith, buildDirect), keep the
+    // paper's bound: the first frame was measured with IGI's own light paths only.
+    if (compensate && (accumulating || lightPaths))
+        set.minDistance2 *= kCompensatedClampScale * kCompensatedClampScale;
     if (settings_.clampCompensation == ClampCompensation::Shrink) {
         set.minDistance2 = float(double(set.minDistance2) * shrink);
         set.sharpnessBudget = float(double(settings_.glossyBound) / shrink);

@@ -47,12 +47,15 @@ class LightingSetBuilder {
     /// frames after the first (the others add nothing, the tracers 1 / share times as much):
     /// it restores about 1 % of the light (more in creases) and would cost a ray a pixel.
     static constexpr float kCompensationShare = 1.0f;
-    /// The bound's distance in the frames after the first, as a multiple of clamp_distance.
+    /// The bound's distance with Kollig-Keller compensation, as a multiple of clamp_distance.
     /// The compensation restores whatever the bound removes, so this trades VPL noise (a VPL
     /// close to a dark crease, within the paper's bound, is a spike there) against the
     /// continuation's noise; 2 lowered relMSE on every scene measured (docs/ACCURACY.md,
-    /// "After the run"); the first frame keeps the paper's bound.
-    static constexpr float kAccumulatedClampScale = 2.0f;
+    /// "After the run"). IGI's first frame has it too: nothing restores the cut there yet (the
+    /// frames after it do, in the running mean), but with Russian roulette its relMSE was 0.55
+    /// to 0.90 times the paper's first frame's on ten of eleven scenes (docs/PERFORMANCE.md,
+    /// "The first frame after a change"), and the bound alone 0.71 to 0.80 on the boxes.
+    static constexpr float kCompensatedClampScale = 2.0f;
     /// The sharpness budget of the first frame after a change (glossy_bound holds for the frames
     /// after it): connections no sharper than Lambertian to Lambertian, the rest of a glossy
     /// lobe's VPL light left to its continuation ray. A VPL near a glossy surface is a spike

@@ -79,9 +79,9 @@ TEST(LightingSetBuilder, RouletteContinuesThePapersWalk) {
     InProcessRenderer roulette(scene);
     std::size_t extra = 0, longest = 0;
     for (std::uint32_t f = 0; f < 100; ++f) {
-        // The walk goes on only in accumulated frames (accumulation > 0).
-        const LightingSet a = paper.renderer().builder().build(f, 1, f % 9),
-                          b = roulette.renderer().builder().build(f, 1, f % 9);
+        // The walk goes on in the first frame after a change as in the accumulated ones.
+        const LightingSet a = paper.renderer().builder().build(f, f % 2, f % 9),
+                          b = roulette.renderer().builder().build(f, f % 2, f % 9);
         // The walk's VPLs come path by path: those of b that a also has are a's, in order.
         std::size_t matched = 0;
         for (const Vpl& v : b.indirect)
@@ -98,8 +98,8 @@ TEST(LightingSetBuilder, RouletteContinuesThePapersWalk) {
 }
 
 // The caustic gather radius shrinks with the frame's place in the accumulation, as progressive
-// photon mapping says, and the bound's distance shrinks only when asked to (and is wider in the
-// accumulated frames with Kollig-Keller compensation).
+// photon mapping says, and the bound's distance shrinks only when asked to (and is wider with
+// Kollig-Keller compensation, from the first frame on).
 TEST(LightingSetBuilder, ProgressiveRadiusAndShrinkingClamp) {
     Scene scene = testing::cornellBox(1.0f, /*glassBall=*/true);
     InProcessRenderer r(scene);
@@ -108,11 +108,21 @@ TEST(LightingSetBuilder, ProgressiveRadiusAndShrinkingClamp) {
     const double scale = progressiveScale(scene.render.progressiveAlpha, 40);
     EXPECT_LT(scale, 0.5);
     EXPECT_NEAR(later.caustics.radius() / first.caustics.radius(), std::sqrt(scale), 1e-5);
-    // Kollig-Keller: the accumulated frames' bound is wider by a constant factor, what it
-    // removes being restored, and it does not shrink.
-    const float wider = LightingSetBuilder::kAccumulatedClampScale;
-    EXPECT_FLOAT_EQ(later.minDistance2, first.minDistance2 * wider * wider);
+    // Kollig-Keller: the bound is wider than the paper's by a constant factor, what it removes
+    // being restored, in every frame alike (the first frame's cut by the frames after it).
+    const float wider = LightingSetBuilder::kCompensatedClampScale;
+    Scene without = scene;
+    without.render.clampCompensation = ClampCompensation::Off;
+    InProcessRenderer papers(without);
+    const float paper2 = papers.renderer().builder().build(5, 0, 2).minDistance2;
+    EXPECT_GT(paper2, 0.0f);
+    EXPECT_FLOAT_EQ(first.minDistance2, paper2 * wider * wider);
+    // The other modes' first frames (their VPLs given) keep the paper's bound.
+    EXPECT_FLOAT_EQ(builder.buildDirect(5, 2).minDistance2, paper2);
+    EXPECT_EQ(later.minDistance2, first.minDistance2);
     EXPECT_EQ(builder.build(5, 1, 2).minDistance2, later.minDistance2);
+    EXPECT_EQ(first.compensationShare, 0.0f);  // the cut is restored from the second frame on
+    EXPECT_GT(later.compensationShare, 0.0f);
     scene.render.clampCompensation = ClampCompensation::Shrink;
     scene.render.progressiveRadius = false;
     InProcessRenderer shrinking(scene);
