@@ -77,7 +77,7 @@ TEST(LightingSetBuilder, RouletteContinuesThePapersWalk) {
     InProcessRenderer paper(scene);
     scene.render.roulette = true;
     InProcessRenderer roulette(scene);
-    std::size_t extra = 0, longest = 0;
+    std::size_t extra = 0, firstFrames = 0, longest = 0;
     for (std::uint32_t f = 0; f < 100; ++f) {
         // The walk goes on in the first frame after a change as in the accumulated ones.
         const LightingSet a = paper.renderer().builder().build(f, f % 2, f % 9),
@@ -91,10 +91,12 @@ TEST(LightingSetBuilder, RouletteContinuesThePapersWalk) {
             }
         ASSERT_EQ(matched, a.indirect.size()) << "frame " << f;
         extra += b.indirect.size() - a.indirect.size();
+        if (f % 2 == 0) firstFrames += b.indirect.size() - a.indirect.size();
         longest = std::max(longest, b.indirect.size());
     }
     std::printf("roulette: %.2f VPLs per set past the paper's walk\n", double(extra) / 100);
     EXPECT_GT(extra, 100u) << "paths go on past the walk";
+    EXPECT_GT(firstFrames, 50u) << "in the first frames after a change too";
 }
 
 // The caustic gather radius shrinks with the frame's place in the accumulation, as progressive
