@@ -147,24 +147,13 @@ def main():
     p.add_argument("--command", default="scripts/first_frame_report.py")
     a = p.parse_args()
     seeds = [int(s) for s in a.seeds.split(",")]
-    names = [s for s in a.scenes.split(",") if s]
-    unknown = [n for n in names if n not in SCENE_NAMES]
-    if unknown:
-        sys.exit(f"unknown scenes {unknown}; known: {', '.join(SCENE_NAMES)}")
+    names = report_util.scene_names(a.scenes, SCENE_NAMES)
     bench = accuracy_report.bench_for(a)
     builds = {"baseline": os.path.abspath(a.baseline_bin), "this": os.path.join(a.build, "bin")}
     base_rev = run([os.path.join(builds["baseline"], "igi-master"), "--version"])[0].stdout
     this_rev = run([os.path.join(builds["this"], "igi-master"), "--version"])[0].stdout
     started = report_util.machine()
-    rows = []
-    for name in names:
-        spec = spec_for(name)
-        if not os.path.exists(spec.path):
-            log(f"{name}: {spec.path} missing, skipped")
-            continue
-        rows += measure(bench, spec, a, builds, seeds)
-    if not rows:
-        sys.exit("nothing measured")
+    rows = report_util.measure_scenes(names, spec_for, lambda spec: measure(bench, spec, a, builds, seeds), log)
     finished = report_util.machine()
     report_util.write_rows_csv(a.csv, rows)
     head = [f"- command: `{a.command}`",

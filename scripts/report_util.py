@@ -9,6 +9,7 @@ import os
 import platform
 import re
 import subprocess
+import sys
 import time
 
 
@@ -44,6 +45,30 @@ def machine():
     return {"uname": f"{u.system} {u.release} {u.machine}", "nproc": os.cpu_count(), "cpu": cpu,
             "date": datetime.datetime.now().isoformat(timespec="seconds"),
             "load": " ".join(f"{x:.2f}" for x in os.getloadavg()), "kernel": platform.release()}
+
+
+def scene_names(text, known):
+    """The comma-separated scene names of text; exits naming those not in known."""
+    names = [s for s in text.split(",") if s]
+    unknown = [n for n in names if n not in known]
+    if unknown:
+        sys.exit(f"unknown scenes {unknown}; known: {', '.join(known)}")
+    return names
+
+
+def measure_scenes(names, spec_for, measure, log):
+    """The rows measure(spec) gives for each scene named, the scenes whose file is missing
+    skipped (and logged); exits when no scene gave any."""
+    rows = []
+    for name in names:
+        spec = spec_for(name)
+        if not os.path.exists(spec.path):
+            log(f"{name}: {spec.path} missing, skipped")
+            continue
+        rows += measure(spec)
+    if not rows:
+        sys.exit("nothing measured")
+    return rows
 
 
 def write_rows_csv(path, rows):

@@ -156,21 +156,10 @@ def main():
     if BASE_PAIR not in pairs:
         pairs.insert(0, BASE_PAIR)
     seeds = [int(s) for s in a.seeds.split(",")]
-    names = [s for s in a.scenes.split(",") if s]
-    unknown = [n for n in names if n not in SCENE_NAMES]
-    if unknown:
-        sys.exit(f"unknown scenes {unknown}; known: {', '.join(SCENE_NAMES)}")
+    names = report_util.scene_names(a.scenes, SCENE_NAMES)
     bench = accuracy_report.bench_for(a)
     started = report_util.machine()
-    rows = []
-    for name in names:
-        spec = spec_for(name)
-        if not os.path.exists(spec.path):
-            log(f"{name}: {spec.path} missing, skipped")
-            continue
-        rows += measure(bench, spec, a, pairs, seeds)
-    if not rows:
-        sys.exit("nothing measured")
+    rows = report_util.measure_scenes(names, spec_for, lambda spec: measure(bench, spec, a, pairs, seeds), log)
     finished = report_util.machine()
     report_util.write_rows_csv(a.csv, rows)
     ks = sorted({r["frames"] for r in rows})
