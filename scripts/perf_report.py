@@ -965,15 +965,16 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
     w("")
     w("Issue 36 asks for the first frame after a change faster at equal or lower error. Since "
       "this change the first frame has the light paths and the bound of the frames accumulated "
-      "after it: Russian roulette past the paper's walk (the paper's walk stops after 4 "
-      "vertices, and in a bright room the bounces it leaves out were 11 % of the light on "
-      "interior-glossy), and, with the compensation, the bound twice as far "
-      "(`LightingSetBuilder::kCompensatedClampScale`; its cut is restored by the frames after "
-      "it, in the running mean). The Lambertian points' compensation rays, the VPLs' photons "
-      "and the pooled caustics still begin with the second frame: one frame does not repay what "
-      "they cost. `scripts/first_frame_report.py --baseline-bin DIR` (its own script, about 15 "
-      "minutes once the references are cached) renders each scene's first frames with a build "
-      "from before and with this one, at the same seeds, and times the client on each in turns.")
+      "after it: Russian roulette past the paper's walk (which stops after 4 vertices: in the "
+      "bright glossy room the paper's first frame was 12 % too dark, the median of the mean "
+      "relative bias in docs/perf/first-frame.csv), and, with the compensation, the bound twice "
+      "as far (`LightingSetBuilder::kCompensatedClampScale`; its cut is restored by the frames "
+      "after it, in the running mean). The Lambertian points' compensation rays, the VPLs' "
+      "photons and the pooled caustics still begin with the second frame: one frame does not "
+      "repay what they cost. `scripts/first_frame_report.py --baseline-bin DIR` (its own "
+      "script, about 15 minutes once the references are cached) renders each scene's first "
+      "frames with a build from before and with this one, at the same seeds, and times the "
+      "client on each in turns.")
     w("")
     w("<!-- BEGIN GENERATED first-frame -->")
     w(generated_block(doc, "first-frame") or "Not measured yet: run scripts/first_frame_report.py.")
@@ -990,18 +991,17 @@ def render_doc(meta, cmd, bench, fps, scaling, ceiling, codec, plot, doc, perf_d
       "before, so the first frame's gain fades as 1 / frames: after 4 frames 0.85 to 1.02 times "
       "the error, after 16 frames 0.91 to 1.01, nowhere worse beyond the seeds' scatter. The "
       "settings were chosen on six scenes (default, spot, cornell-glossy and the three rooms) "
-      "with seeds 3 to 13 by a build that switched each part of the converging estimator on in "
-      "the first frame alone: the roulette gave most in the rooms (interior-glossy 0.63 alone) "
-      "and cost the boxes a little, the wider bound took the boxes' VPL spikes away (0.71 to "
-      "0.80 alone), the two together were below the paper on all six; the glossy budget of the "
-      "accumulated frames made cornell-glossy's first frame 1.8 times worse, and the Lambertian "
-      "points' compensation rays (a quarter more time on the default scene, for the same error) "
-      "and the pooled caustics (0.82 times the error for 1.2 times the time there) did not pay "
-      "in one frame. The other four Cornell boxes and the arcades were measured after the "
-      "choice. Issue 36's 1.8 times faster first frame at equal error is not reached: on "
-      "interior-glossy this is 0.64 times the error at equal time, and a cheaper pair of light "
-      "samples and VPLs in the first frame alone (the report's table above on shadow rays) is "
-      "not measured.")
+      "with seeds 3 to 13, by hand, with a throwaway build that switched each part of the "
+      "converging estimator on in the first frame alone (not kept, so not re-runnable; its "
+      "figures are in issue 36's notes): the roulette gave most in the rooms and cost the boxes "
+      "a little, the wider bound took the boxes' VPL spikes away, and the two together were "
+      "below the paper on all six; the glossy budget of the accumulated frames made "
+      "cornell-glossy's first frame worse, and the Lambertian points' compensation rays and the "
+      "pooled caustics did not pay in one frame. The other four Cornell boxes and the arcades "
+      "were measured after the choice. Issue 36's 1.8 times faster first frame at equal error "
+      "is not reached: on interior-glossy this is 0.64 times the error at equal time, and a "
+      "cheaper pair of light samples and VPLs in the first frame alone (the report's table "
+      "above on shadow rays) is not measured.")
     w("")
 
     w("## 7. The web view: key to image, and what it costs")

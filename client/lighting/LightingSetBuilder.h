@@ -54,7 +54,7 @@ class LightingSetBuilder {
     /// "After the run"). IGI's first frame has it too: nothing restores the cut there yet (the
     /// frames after it do, in the running mean), but with Russian roulette its relMSE was 0.55
     /// to 0.90 times the paper's first frame's on ten of eleven scenes (docs/PERFORMANCE.md,
-    /// "The first frame after a change"), and the bound alone 0.71 to 0.80 on the boxes.
+    /// "The first frame after a change").
     static constexpr float kCompensatedClampScale = 2.0f;
     /// The sharpness budget of the first frame after a change (glossy_bound holds for the frames
     /// after it): connections no sharper than Lambertian to Lambertian, the rest of a glossy
