@@ -366,7 +366,8 @@ void EndPointShader::continueFrom(const ShadingPoint& x, const LightingSet& set,
     if (!(r > 0)) return;
     const float scale = cosX / (pdf * traced) * r;  // radiance from w times this estimates E
     const glm::vec3 glossyF = glossy ? b.glossy(w, lobeW) : glm::vec3(0.0f);
-    const bool compensate = compensate_ && set.minDistance2 > 0 && set.indirectLight;
+    const bool compensate =
+        compensate_ && set.compensationRays && set.minDistance2 > 0 && set.indirectLight;
 
     // Without a glossy lobe only the compensation needs the ray, and it has nothing to add
     // beyond dmin sqrt(s_x s_max), where every connection is kept whole.

@@ -178,5 +178,35 @@ TEST(IgiIntegrator, ConnectionsInLanesGiveTheBitsOfConnectionsOneAtATime) {
     EXPECT_EQ(a.shadowRays, b.shadowRays);
 }
 
+// IGI's first frame after a change shades no second point: a glossy point's continuation ray
+// finds the lights its lobe sees, but does not shade where it lands to restore the bound's cut
+// (LightingSet::compensationRays). The same set allowed those rays traces more shadow rays.
+TEST(IgiIntegrator, TheFirstFramesGlossyPointsShadeNoSecondPoint) {
+    Scene scene = testing::cornellBox(1.0f);
+    scene.materials[0].specular = glm::vec3(0.3f);  // a glossy floor and back wall
+    scene.materials[0].phongExponent = 30.0f;
+    scene.materials[0].reflection = Reflection::Glossy;
+    scene.image = {40, 30, 0};
+    ASSERT_EQ(scene.render.clampCompensation, ClampCompensation::KolligKeller);
+    InProcessRenderer renderer(scene);
+    TileRenderer& tiles = renderer.renderer();
+    bool built = false;
+    const auto set = tiles.cache().get(2, 0, 1, built);
+    ASSERT_FALSE(set->compensationRays);
+    LightingSet compensated = *set;
+    compensated.compensationRays = true;
+    const IgiIntegrator igi(renderer.traceable(), tiles.lights(), scene.render, tiles.camera());
+    RayCounters first, withRays;
+    for (int y = 0; y < scene.image.height; ++y)
+        for (int x = 0; x < scene.image.width; ++x) {
+            const auto index = std::uint32_t(y * scene.image.width + x);
+            igi.shade(x, y, index, 2, *set, first);
+            igi.shade(x, y, index, 2, compensated, withRays);
+        }
+    EXPECT_GT(first.shadowRays, 0u);
+    EXPECT_GT(withRays.shadowRays, first.shadowRays + first.shadowRays / 10)
+        << "the glossy points shade where their rays land when the set allows it";
+}
+
 }  // namespace
 }  // namespace igi

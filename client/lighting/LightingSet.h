@@ -80,6 +80,10 @@ struct LightingSet {
     /// The share of points without a glossy lobe that trace a compensation ray (0: none; the
     /// points with one always do when there is a compensation at all).
     float compensationShare = 0;
+    /// Whether the points shade where their compensation rays land, where the settings ask for
+    /// Kollig-Keller's compensation: not in IGI's first frame after a change, which leaves the
+    /// bound's cut unrestored (LightingSetBuilder::assemble).
+    bool compensationRays = true;
     std::uint32_t lightPaths = 0;  ///< light paths traced for `indirect`
     std::uint32_t photonsShot = 0;
     RayCounters buildRays;  ///< rays traced to build the set

@@ -113,6 +113,10 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
     // Progressive parts shrink with the frame's place in the accumulation.
     const double shrink = progressiveScale(settings_.progressiveAlpha, accumulation);
     set.minDistance2 = minDistance_ * minDistance_;
+    // Nor do the glossy points' compensation rays shade where they land in IGI's first frame
+    // (they still find the lights the lobe sees): each such point shaded a second point with
+    // every light sample and VPL again, which doubled the glossy room's first frame.
+    set.compensationRays = !(lightPaths && !accumulating);
     // The sharpness budget needs something to restore what it removes: without compensation a
     // glossy lobe is left whole (it is not singular, only noisy).
     if (compensate)

@@ -62,7 +62,10 @@ class LightingSetBuilder {
     /// that the 3 x 3 filter spreads but does not remove, and nothing accumulates over it; with
     /// 1 instead of 4 the first frame's relMSE fell on interior-glossy and cornell-glossy with
     /// each of seeds 1-3 (by 5-9 %), its speckle to about the diffuse room's, and scenes without
-    /// glossy surfaces are unchanged.
+    /// glossy surfaces are unchanged. Since IGI's first frame shades no second point where its
+    /// continuation rays land (LightingSet::compensationRays), the rest is not restored there,
+    /// and the cut stays: leaving the lobes whole there (an infinite budget) made cornell-glossy's
+    /// first frame far noisier than the cut's bias makes it wrong (measured by hand).
     static constexpr float kFirstFrameSharpnessBudget = 1.0f;
 
     /// How light paths end: Keller's quasi-random walk (the paper's, a fixed share of the

@@ -134,6 +134,23 @@ TEST(LightingSetBuilder, ProgressiveRadiusAndShrinkingClamp) {
     EXPECT_EQ(a.caustics.radius(), b.caustics.radius());
 }
 
+// IGI's first frame after a change restores nothing of the bound's cut: its glossy points'
+// compensation rays do not shade where they land. The frames after it, and the other modes'
+// first frames (their VPLs given), restore the cut.
+TEST(LightingSetBuilder, TheFirstFrameShadesNoSecondPoint) {
+    Scene scene = testing::cornellBox(1.0f, /*glassBall=*/true);
+    InProcessRenderer r(scene);
+    const auto& builder = r.renderer().builder();
+    const LightingSet first = builder.build(5, 0, 2), later = builder.build(5, 1, 2),
+                      direct = builder.buildDirect(5, 2);
+    EXPECT_FALSE(first.compensationRays);
+    EXPECT_EQ(first.sharpnessBudget, LightingSetBuilder::kFirstFrameSharpnessBudget);
+    EXPECT_TRUE(later.compensationRays);
+    EXPECT_EQ(later.sharpnessBudget, scene.render.glossyBound);
+    EXPECT_TRUE(direct.compensationRays);
+    EXPECT_EQ(direct.sharpnessBudget, LightingSetBuilder::kFirstFrameSharpnessBudget);
+}
+
 // The schedule itself: r_1^2 / r_0^2 = (1 + alpha) / 2, and it falls like i^(alpha - 1).
 TEST(ProgressiveSchedule, FollowsKnausAndZwicker) {
     EXPECT_EQ(progressiveScale(0.7, 0), 1.0);
