@@ -76,7 +76,10 @@ def cpu_seconds(bin_dir, scene, args):
     proc, _ = run([os.path.join(bin_dir, "igi-bench"), "--scene", scene[0], *scene[1], "--threads", "1",
                    "--frames", str(args.bench_frames), "--segments", "100000", "--width", str(args.bench_width),
                    "--height", str(args.bench_height)], env=BENCH_ENV)
-    return json.loads(proc.stdout)["client_cpu_seconds"]
+    # Builds from before b193d16 logged the scene's warnings to stdout, before the JSON.
+    out = proc.stdout
+    start = 0 if out.startswith("{") else out.find("\n{") + 1
+    return json.loads(out[start:])["client_cpu_seconds"]
 
 
 def measure(bench, spec, args, builds, seeds):
