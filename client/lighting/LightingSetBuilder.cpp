@@ -99,13 +99,12 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
     LightingSet set;
     // The first frame after a change is what a user sees while moving. It has the light paths
     // and the bound of the frames after it (Russian roulette past the paper's walk; with the
-    // compensation, the wider bound), which cost it 1.02 to 1.18 times the paper's time for
-    // 0.55 to 0.90 times its relMSE on ten of the eleven scenes measured, 1.02 on the Sponza
-    // arcades (docs/PERFORMANCE.md, "The first frame after a change"). What would
-    // restore the bound's cut (the compensation rays of the points without a glossy lobe) and
-    // the VPLs' photons cost rays and time that one frame does not repay: they begin with the
-    // frames accumulated after it, so the running mean converges all the same, the first
-    // frame's bias weighing 1 / frames.
+    // compensation, the wider bound): less error than the paper's first frame for about its
+    // time, on every scene measured (docs/PERFORMANCE.md, "The first frame after a change").
+    // What would restore the bound's cut (the compensation rays of the points without a glossy
+    // lobe, and the second points the glossy ones shade) and the VPLs' photons cost rays and
+    // time that one frame does not repay: they begin with the frames accumulated after it, so
+    // the running mean converges all the same, the first frame's bias weighing 1 / frames.
     const bool accumulating = accumulation > 0;
     const bool compensate = settings_.clampCompensation == ClampCompensation::KolligKeller;
     set.roulette = settings_.roulette;
@@ -113,9 +112,9 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
     // Progressive parts shrink with the frame's place in the accumulation.
     const double shrink = progressiveScale(settings_.progressiveAlpha, accumulation);
     set.minDistance2 = minDistance_ * minDistance_;
-    // Nor do the glossy points' compensation rays shade where they land in IGI's first frame
-    // (they still find the lights the lobe sees): each such point shaded a second point with
-    // every light sample and VPL again, which doubled the glossy room's first frame.
+    // A glossy point's continuation ray still finds the lights its lobe sees in IGI's first
+    // frame, but does not shade where it lands: that second point, with every light sample and
+    // VPL again, took about half of the glossy room's first frame.
     set.compensationRays = !(lightPaths && !accumulating);
     // The sharpness budget needs something to restore what it removes: without compensation a
     // glossy lobe is left whole (it is not singular, only noisy).
