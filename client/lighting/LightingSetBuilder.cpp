@@ -114,7 +114,8 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
     set.minDistance2 = minDistance_ * minDistance_;
     // A glossy point's continuation ray still finds the lights its lobe sees in IGI's first
     // frame, but does not shade where it lands: that second point, with every light sample and
-    // VPL again, took about half of the glossy room's first frame.
+    // VPL again, took about half of the glossy room's first frame (measured by hand; the
+    // report in docs/PERFORMANCE.md measures the frame as it now is).
     set.compensationRays = !(lightPaths && !accumulating);
     // The sharpness budget needs something to restore what it removes: without compensation a
     // glossy lobe is left whole (it is not singular, only noisy).
