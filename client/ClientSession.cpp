@@ -227,12 +227,18 @@ void ClientSession::onSceneData(const proto::Header& header, proto::SceneData da
             const auto& version = versions.back();
             const float seconds =
                 std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
+            const RenderSettings& first = version->renderer.firstFrameSettings();
             spdlog::info(
                 "scene '{}' ready: {} triangles in {:.2f} s, {} light paths and {} direct samples "
-                "per set{}",
+                "per set{}{}",
                 data.bundle.sceneName, version->traceable.triangleCount(), seconds,
                 version->renderer.builder().vplPaths(), scene->render.directSamples,
-                version->renderer.builder().causticsActive() ? ", caustics on" : "");
+                version->renderer.builder().causticsActive() ? ", caustics on" : "",
+                !version->renderer.firstFrameDiffers()
+                    ? std::string()
+                    : fmt::format("; the first frame after a change: direct samples {}, VPLs "
+                                  "per point {}",
+                                  first.directSamples, first.indirectVpls));
             boost::asio::post(io_, [this, scene = std::move(scene), geometry = std::move(geometry),
                                     versions = std::move(versions), seconds]() mutable {
                 onSceneLoaded(std::move(scene), std::move(geometry), std::move(versions), seconds);
@@ -334,7 +340,7 @@ void ClientSession::onTile(const proto::Header& header, const proto::TileAssign&
         newestFrame_ = header.frame;
         // Sets of frames two behind are no longer needed: frames are pipelined one deep.
         if (newestFrame_ >= 2)
-            for (auto& [epoch, v] : versions_) v->renderer.cache().evictBefore(newestFrame_ - 1);
+            for (auto& [epoch, v] : versions_) v->renderer.evictBefore(newestFrame_ - 1);
     }
     const std::uint32_t frame = header.frame, epoch = header.epoch;
     std::shared_ptr<SceneVersion> v = version->second;

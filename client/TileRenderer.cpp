@@ -94,7 +94,11 @@ TileRenderer::TileRenderer(const TraceableScene& scene, const SceneState& state,
       method_(makeLightingMethod(builder_, scene, state, settings, image, context)),
       cache_(*method_),
       igi_(scene, lights_, settings, camera_),
-      path_(scene, lights_, settings, camera_) {}
+      path_(scene, lights_, settings, camera_) {
+    const RenderSettings first = settings.firstFrameSettings(lights_.count());
+    if (!(first == settings))
+        firstFrame_ = std::make_unique<FirstFrame>(scene, lights_, first, camera_);
+}
 
 void TileRenderer::render(ThreadPool& pool, std::uint32_t frame, std::uint32_t accumulation,
                           std::uint32_t tileId, const Tile& tile, Done done) {
@@ -151,7 +155,9 @@ void TileRenderer::renderChunk(TileJob& job, int chunk) {
     } else {
         bool built = false;
         const auto set =
-            cache_.get(job.frame, job.accumulation, std::uint32_t(job.tile.setIndex(n)), built);
+            cacheFor(job.accumulation)
+                .get(job.frame, job.accumulation, std::uint32_t(job.tile.setIndex(n)), built);
+        const IgiIntegrator& igi = job.accumulation == 0 && firstFrame_ ? firstFrame_->igi : igi_;
         if (built) {
             local.setsBuilt = 1;
             counters += set->buildRays;
@@ -169,7 +175,7 @@ void TileRenderer::renderChunk(TileJob& job, int chunk) {
                       y = job.tile.rowY(chunkPixel[k].row, m);
             pixels[k] = {x, y, std::uint32_t(y * image_.width + x)};
         }
-        igi_.shade(pixels.data(), count, job.frame, *set, results.data(), counters);
+        igi.shade(pixels.data(), count, job.frame, *set, results.data(), counters);
         for (int k = 0; k < count; ++k) {
             const int i = chunkPixel[k].index, x = pixels[k].x, y = pixels[k].y;
             PixelResult& r = results[k];

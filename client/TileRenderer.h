@@ -7,6 +7,7 @@
 #include "Messages.h"
 #include "integrators/IgiIntegrator.h"
 #include "integrators/PathIntegrator.h"
+#include "lighting/IgiLighting.h"
 #include "lighting/LightingCache.h"
 #include "lighting/LightingMethod.h"
 #include "lighting/LightingSetBuilder.h"
@@ -42,14 +43,48 @@ class TileRenderer {
     proto::TileResult renderNow(ThreadPool& pool, std::uint32_t frame, const Tile& tile,
                                 std::uint32_t accumulation = 0);
 
+    /// The sets of the accumulated frames (and of every frame where the first frame's settings
+    /// are the same, RenderSettings::firstFrameSettings).
     LightingCache& cache() { return cache_; }
+    /// The sets a frame at `accumulation` is rendered with.
+    LightingCache& cacheFor(std::uint32_t accumulation) {
+        return accumulation == 0 && firstFrame_ ? firstFrame_->cache : cache_;
+    }
+    /// Forgets both caches' sets of frames before `frame`.
+    void evictBefore(std::uint32_t frame) {
+        cache_.evictBefore(frame);
+        if (firstFrame_) firstFrame_->cache.evictBefore(frame);
+    }
     const LightingSetBuilder& builder() const { return builder_; }
+    /// The settings of the first frame after a change (RenderSettings::firstFrameSettings).
+    const RenderSettings& firstFrameSettings() const {
+        return firstFrame_ ? firstFrame_->settings : settings_;
+    }
+    bool firstFrameDiffers() const { return firstFrame_ != nullptr; }
     const LightingMethod& method() const { return *method_; }
     const Lights& lights() const { return lights_; }
     const CameraModel& camera() const { return camera_; }
 
   private:
     struct TileJob;
+    /// What IGI renders its first frame after a change with where that frame's settings are
+    /// not the accumulated frames' (RenderSettings::firstFrameDivisor): a builder, sets and an
+    /// integrator of their own, over the same scene, lights and camera. The frame is then the
+    /// first frame of a session started with those settings, bit for bit.
+    struct FirstFrame {
+        FirstFrame(const TraceableScene& scene, const Lights& lights,
+                   const RenderSettings& settings, const CameraModel& camera)
+            : settings(settings),
+              builder(scene, lights, settings),
+              method(builder),
+              cache(method),
+              igi(scene, lights, settings, camera) {}
+        RenderSettings settings;
+        LightingSetBuilder builder;
+        IgiLighting method;
+        LightingCache cache;
+        IgiIntegrator igi;
+    };
     void renderChunk(TileJob& job, int chunk);
 
     const TraceableScene& scene_;
@@ -62,6 +97,7 @@ class TileRenderer {
     LightingCache cache_;
     IgiIntegrator igi_;
     PathIntegrator path_;
+    std::unique_ptr<FirstFrame> firstFrame_;  ///< null where the first frame is like the others
 };
 
 }  // namespace igi

@@ -263,6 +263,10 @@ int main(int argc, char** argv) {
         {"--vpl-pool", "vpl_pool", true,
          "VPLs per set that points choose from with --vpl-sampling importance (0: 8 x "
          "--indirect-vpls)"},
+        {"--first-frame-divisor", "first_frame_divisor", true,
+         "the first frame after a change (every frame without accumulation) takes the light "
+         "samples and the VPLs per point divided by this, rounded up (1: all; 0: auto, 4 where "
+         "points choose VPLs by importance, else 1)"},
         {"--max-light-path-length", "max_light_path_length", true, "vertices of a light path"},
         {"--clamp-distance", "clamp_distance", false, "VPL clamp, fraction of the scene diagonal"},
         {"--caustic-photons", "caustic_photons", true, "caustic photons per set"},

@@ -242,7 +242,7 @@ TEST(ChangeCodec, SizesOfEveryKindAreAsDocumented) {
     EXPECT_EQ(encodeChange(QuadLightChange{}).size(), 54u);
     EXPECT_EQ(encodeChange(MaterialChange{}).size(), 71u);
     EXPECT_EQ(encodeChange(EnvironmentChange{}).size(), 17u);
-    EXPECT_EQ(encodeChange(SettingsChange{}).size(), 168u);
+    EXPECT_EQ(encodeChange(SettingsChange{}).size(), 172u);
     EXPECT_EQ(kMinChangeBytes, 17u);
 }
 

@@ -165,7 +165,7 @@ TEST(Codec, TypeOfMatchesTheTypeNumbers) {
 TEST(Codec, HeaderLayoutIsLittleEndianAsDocumented) {
     const auto bytes = encodeMessage(Heartbeat{}, 0x01020304, 0x0A0B0C0D);
     ASSERT_EQ(bytes.size(), kHeaderSize);
-    const std::uint8_t expected[kHeaderSize] = {'I',  'G',  'I',  'P',  13, 0, 7, 0, 4, 3, 2, 1,
+    const std::uint8_t expected[kHeaderSize] = {'I',  'G',  'I',  'P',  14, 0, 7, 0, 4, 3, 2, 1,
                                                 0x0D, 0x0C, 0x0B, 0x0A, 0,  0, 0, 0, 0, 0, 0, 0};
     EXPECT_EQ(0, std::memcmp(bytes.data(), expected, kHeaderSize));
 }
@@ -217,7 +217,7 @@ TEST(Codec, HeaderRejectsBadMagic) {
 TEST(Codec, HeaderRejectsOtherVersions) {
     auto h = goodHeader();
     h[4] = 1;
-    EXPECT_EQ(headerError(h), "protocol version 1, this build speaks 13");
+    EXPECT_EQ(headerError(h), "protocol version 1, this build speaks 14");
     h[4] = 0;
     EXPECT_NE(headerError(h).find("protocol version 0"), std::string::npos);
 }

@@ -24,7 +24,7 @@ namespace igi::proto {
 /// epoch can be recognised and dropped. The payload size is checked against the type's maximum
 /// before anything is allocated.
 constexpr std::uint32_t kMagic = 0x50494749u;  // bytes 'I' 'G' 'I' 'P'
-constexpr std::uint16_t kVersion = 13;
+constexpr std::uint16_t kVersion = 14;
 constexpr std::size_t kHeaderSize = 24;
 
 enum class MessageType : std::uint16_t {

@@ -10,7 +10,7 @@ namespace {
 
 // A new field in one of these structs must be added to the codec and to docs/PROTOCOL.md, or
 // it silently never reaches the clients. These sizes make the compiler say so (x86-64 / LP64).
-static_assert(sizeof(RenderSettings) == 184, "RenderSettings changed: update SceneCodec.cpp");
+static_assert(sizeof(RenderSettings) == 192, "RenderSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(ImageSettings) == 12, "ImageSettings changed: update SceneCodec.cpp");
 static_assert(sizeof(Camera) == 40, "Camera changed: update SceneCodec.cpp");
 static_assert(sizeof(SceneBundle) == 2 * sizeof(std::string) + sizeof(SceneBundle::files),
@@ -102,6 +102,7 @@ void writeRenderSettings(ByteWriter& out, const RenderSettings& s) {
     out.u8(static_cast<std::uint8_t>(s.vplSampling));
     out.i32(s.vplPool);
     out.i32(s.lightEdgeRays);
+    out.i32(s.firstFrameDivisor);
 }
 
 RenderSettings readRenderSettings(ByteReader& in) {
@@ -171,6 +172,7 @@ RenderSettings readRenderSettings(ByteReader& in) {
     s.vplSampling = static_cast<VplSampling>(vplSampling);
     s.vplPool = readInt(in, "vplPool", 0, 100000);
     s.lightEdgeRays = readInt(in, "lightEdgeRays", 0, 1024);
+    s.firstFrameDivisor = readInt(in, "firstFrameDivisor", 0, kMaxFirstFrameDivisor);
     return s;
 }
 

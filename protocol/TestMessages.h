@@ -149,6 +149,7 @@ inline SceneData sampleSceneData() {
     m.settings.vplSampling = VplSampling::Importance;
     m.settings.vplPool = 99;
     m.settings.lightEdgeRays = 5;
+    m.settings.firstFrameDivisor = 7;
     m.image = {800, 600, -1.5f};
     m.camera.position = {1.0f, 2.0f, 3.0f};
     m.camera.lookAt = {-1.0f, 0.5f, 0.25f};

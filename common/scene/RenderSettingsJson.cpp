@@ -81,6 +81,8 @@ void readIgiLighting(const JsonNode& section, RenderSettings& s) {
                                        : VplSampling::Importance;
     }
     readInt(section, "vpl_pool", 0, 100000, s.vplPool);
+    // The first frame after a change takes the light samples and VPLs divided by this (0: auto).
+    readInt(section, "first_frame_divisor", 0, kMaxFirstFrameDivisor, s.firstFrameDivisor);
     // Vertices of a light path, the one on the light included.
     readInt(section, "max_light_path_length", 1, 64, s.maxLightPathLength);
     // Fraction of the scene's bounding-box diagonal.
@@ -174,6 +176,7 @@ void applyRenderSettingsJson(const nlohmann::json& json, RenderSettings& setting
                        "indirect_vpls",
                        "vpl_sampling",
                        "vpl_pool",
+                       "first_frame_divisor",
                        "max_light_path_length",
                        "clamp_distance",
                        "caustic_photons",
@@ -253,6 +256,7 @@ nlohmann::json renderSettingsJson(const RenderSettings& s) {
             {"indirect_vpls", s.indirectVpls},
             {"vpl_sampling", vplSamplingName(s.vplSampling)},
             {"vpl_pool", s.vplPool},
+            {"first_frame_divisor", s.firstFrameDivisor},
             {"max_light_path_length", s.maxLightPathLength},
             {"clamp_distance", s.clampDistance},
             {"caustic_photons", s.causticPhotons},

@@ -50,6 +50,9 @@ TEST(RenderSettingsJson, VplSamplingChoicesAndPool) {
     }
     applyRenderSettingsJson(nlohmann::json{{"vpl_pool", 100}, {"indirect_vpls", 9}}, s, "f", "");
     EXPECT_EQ(s.effectiveVplPool(), 100);
+    EXPECT_EQ(s.firstFrameDivisor, 0);  // auto
+    applyRenderSettingsJson(nlohmann::json{{"first_frame_divisor", 2}}, s, "f", "");
+    EXPECT_EQ(s.firstFrameDivisor, 2);
     EXPECT_THROW(applyRenderSettingsJson(nlohmann::json{{"vpl_sampling", "tree"}}, s, "f", ""),
                  SceneError);
     EXPECT_THROW(applyRenderSettingsJson(nlohmann::json{{"vpl_pool", -1}}, s, "f", ""), SceneError);
@@ -128,6 +131,8 @@ TEST(RenderSettingsJson, ErrorsUseTheGivenFileAndPrefix) {
               "cli: /override/max_path_length: must be in [1, 1024], got 2000");
     EXPECT_EQ(apply(R"({"caustic_photons": 10000001})"),
               "cli: /override/caustic_photons: must be in [0, 10000000], got 10000001");
+    EXPECT_EQ(apply(R"({"first_frame_divisor": 65})"),
+              "cli: /override/first_frame_divisor: must be in [0, 64], got 65");
     EXPECT_EQ(apply(R"({"accumulate": 1})"),
               "cli: /override/accumulate: expected true or false, got 1");
     EXPECT_EQ(apply("[]"), "cli: /override: expected an object, got array");
@@ -165,6 +170,7 @@ TEST(RenderSettingsJson, EverySettingWrittenReadsBackTheSame) {
     s.seed = 18446744073709551615ull;
     s.sptPaths = 9;
     s.sptPilots = 7;
+    s.firstFrameDivisor = 5;
     const nlohmann::json j = renderSettingsJson(s);
     EXPECT_TRUE(j["seed"].is_number_unsigned());
     EXPECT_EQ(j["gi"], "photonmap");
