@@ -14,6 +14,8 @@ bool keyServesMode(const std::string& key, GiMode mode) {
     if (starts("spt_")) return mode == GiMode::Spt;
     if (starts("cache_")) return mode == GiMode::Cache || mode == GiMode::PhotonMap;
     if (starts("photonmap_")) return mode == GiMode::PhotonMap;
+    // The other modes' first frames keep what their method keeps (RenderSettings).
+    if (key == "first_frame_divisor") return mode == GiMode::Igi;
     return true;
 }
 

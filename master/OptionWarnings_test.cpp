@@ -51,7 +51,10 @@ TEST(OptionWarnings, SettingsThatTheIntegratorOrModeIgnores) {
         joined(uselessOptionWarnings(
             withOutput(), {{"spt_groups", 4}, {"cache_spacing", 0.1}, {"gi", "cache"}}, cache)),
         "--spt-groups does nothing with --gi cache\n");
+    EXPECT_EQ(joined(uselessOptionWarnings(withOutput(), {{"first_frame_divisor", 2}}, cache)),
+              "--first-frame-divisor does nothing with --gi cache\n");
     EXPECT_TRUE(uselessOptionWarnings(withOutput(), {{"direct_samples", 2}}, igi).empty());
+    EXPECT_TRUE(uselessOptionWarnings(withOutput(), {{"first_frame_divisor", 2}}, igi).empty());
 }
 
 TEST(OptionWarnings, AFiniteRunThatWritesNothing) {

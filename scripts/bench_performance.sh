@@ -215,6 +215,20 @@ for i in "${!bench_names[@]}"; do
     done
   done
 done
+# igi-bench renders each frame as the first after a change, which on the many-light scenes
+# takes a quarter of the light samples and VPLs per point (RenderSettings::firstFrameDivisor):
+# their accumulated frames, at the full 4 + 18, as well (--accumulated), on one thread.
+for i in "${!bench_names[@]}"; do
+  case "${bench_names[$i]}" in interior-* | sponza-*) ;; *) continue ;; esac
+  for r in $(seq 1 "$bench_repeats"); do
+    say "igi-bench ${bench_names[$i]}, accumulated frames, 1 thread, run $r of $bench_repeats"
+    base="$raw/bench/${bench_names[$i]}-accumulated-t1-r$r"
+    run_logged "$base.log" 600 \
+      "$bin/igi-bench" --scene "${bench_files[$i]}" --allow-outside-paths --threads 1 \
+      --frames "$bench_frames" --segments "$bench_segments" --width 640 --height 480 --accumulated
+    sed -n '/^{/,/^}/p' "$base.log" >"$base.json"
+  done
+done
 
 # ---------------------------------------------------------------------------------------------
 # 2. End-to-end frame rate, paper settings, 640 x 480, 1 and 2 local clients (each client gets
