@@ -250,10 +250,10 @@ struct RenderSettings {
 /// render seconds for 3 frames at 320 x 240, two rounds; its run of 2026-11-29 16:10 UTC):
 /// 1 + 5 took 0.48-0.57 and 0.57-0.63 of 4 + 18's time for 1.29 and 1.25 times its relMSE;
 /// 2 + 6 took 0.62-0.64 and 0.62-0.70 for 1.13 and 1.15; 2 + 6 from a pool of 48 (the pool
-/// divided too) 0.46-0.50 and 0.58-0.65 for 1.41 and 1.78. The rooms' first frames had a tenth of the error of
-/// the day issue 36 was filed, which a quarter of the rays turns into time; the arcades' had
-/// as much, and pay for the speed in error (docs/PERFORMANCE.md, "The first frame after a
-/// change").
+/// divided too) 0.46-0.50 and 0.58-0.65 for 1.41 and 1.78. The rooms' first frames had a tenth of
+/// the error of the day issue 36 was filed, which a quarter of the rays turns into time; the
+/// arcades' had as much, and pay for the speed in error (docs/PERFORMANCE.md, "The first frame
+/// after a change").
 constexpr int kAutoFirstFrameDivisor = 4;
 /// The largest divisor a scene file or command takes.
 constexpr int kMaxFirstFrameDivisor = 64;
