@@ -97,7 +97,7 @@ TileRenderer::TileRenderer(const TraceableScene& scene, const SceneState& state,
       path_(scene, lights_, settings, camera_) {
     const RenderSettings first = settings.firstFrameSettings(lights_.count());
     if (!(first == settings))
-        firstFrame_ = std::make_unique<FirstFrame>(scene, lights_, first, camera_);
+        firstFrame_ = std::make_unique<FirstFrame>(scene, lights_, first, igi_);
 }
 
 void TileRenderer::render(ThreadPool& pool, std::uint32_t frame, std::uint32_t accumulation,
@@ -157,7 +157,7 @@ void TileRenderer::renderChunk(TileJob& job, int chunk) {
         const auto set =
             cacheFor(job.accumulation)
                 .get(job.frame, job.accumulation, std::uint32_t(job.tile.setIndex(n)), built);
-        const IgiIntegrator& igi = job.accumulation == 0 && firstFrame_ ? firstFrame_->igi : igi_;
+        const IgiIntegrator& igi = rendersFirstFrame(job.accumulation) ? firstFrame_->igi : igi_;
         if (built) {
             local.setsBuilt = 1;
             counters += set->buildRays;

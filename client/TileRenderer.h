@@ -48,7 +48,7 @@ class TileRenderer {
     LightingCache& cache() { return cache_; }
     /// The sets a frame at `accumulation` is rendered with.
     LightingCache& cacheFor(std::uint32_t accumulation) {
-        return accumulation == 0 && firstFrame_ ? firstFrame_->cache : cache_;
+        return rendersFirstFrame(accumulation) ? firstFrame_->cache : cache_;
     }
     /// Forgets both caches' sets of frames before `frame`.
     void evictBefore(std::uint32_t frame) {
@@ -69,16 +69,17 @@ class TileRenderer {
     struct TileJob;
     /// What IGI renders its first frame after a change with where that frame's settings are
     /// not the accumulated frames' (RenderSettings::firstFrameDivisor): a builder, sets and an
-    /// integrator of their own, over the same scene, lights and camera. The frame is then the
-    /// first frame of a session started with those settings, bit for bit.
+    /// integrator of their own, over the same scene, lights and camera (and the accumulated
+    /// frames' integrator's light edges). The frame is then the first frame of a session
+    /// started with those settings, bit for bit.
     struct FirstFrame {
         FirstFrame(const TraceableScene& scene, const Lights& lights,
-                   const RenderSettings& settings, const CameraModel& camera)
+                   const RenderSettings& settings, const IgiIntegrator& accumulated)
             : settings(settings),
               builder(scene, lights, settings),
               method(builder),
               cache(method),
-              igi(scene, lights, settings, camera) {}
+              igi(accumulated, settings) {}
         RenderSettings settings;
         LightingSetBuilder builder;
         IgiLighting method;
@@ -86,6 +87,10 @@ class TileRenderer {
         IgiIntegrator igi;
     };
     void renderChunk(TileJob& job, int chunk);
+    /// Whether a frame at `accumulation` is rendered with firstFrame_.
+    bool rendersFirstFrame(std::uint32_t accumulation) const {
+        return accumulation == 0 && firstFrame_ != nullptr;
+    }
 
     const TraceableScene& scene_;
     RenderSettings settings_;

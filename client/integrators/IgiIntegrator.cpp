@@ -18,6 +18,12 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
+std::shared_ptr<const LightEdges> lightEdgesFor(const Lights& lights, const CameraModel& camera,
+                                                const RenderSettings& settings) {
+    return std::make_shared<const LightEdges>(
+        settings.lightEdgeRays > 0 ? LightEdges(lights, camera) : LightEdges());
+}
+
 }  // namespace
 
 glm::vec3 emittedToward(const SurfacePoint& hit, glm::vec3 wo) {
@@ -33,7 +39,17 @@ IgiIntegrator::IgiIntegrator(const TraceableScene& scene, const Lights& lights,
       settings_(settings),
       camera_(camera),
       shader_(scene, lights, settings),
-      lightEdges_(settings.lightEdgeRays > 0 ? LightEdges(lights, camera) : LightEdges()) {}
+      lightEdges_(lightEdgesFor(lights, camera, settings)) {}
+
+IgiIntegrator::IgiIntegrator(const IgiIntegrator& other, const RenderSettings& settings)
+    : scene_(other.scene_),
+      lights_(other.lights_),
+      settings_(settings),
+      camera_(other.camera_),
+      shader_(scene_, lights_, settings),
+      lightEdges_((settings.lightEdgeRays > 0) == (other.settings_.lightEdgeRays > 0)
+                      ? other.lightEdges_
+                      : lightEdgesFor(lights_, camera_, settings)) {}
 
 /// One pixel's eye path through the phases of shade(): its numbers, the eye ray's hit, its end
 /// points and what each queued.
@@ -94,7 +110,7 @@ void IgiIntegrator::shade(const Pixel* pixels, int count, std::uint32_t frame,
     camera_.directions(px.data(), py.data(), count, directions.data());
     for (int i = 0; i < count; ++i) paths[std::size_t(i)].direction = directions[std::size_t(i)];
     traceEyeRays(paths.data(), count, counters);
-    if (!lightEdges_.empty())
+    if (!lightEdges_->empty())
         gatherLightAtEdges(pixels, count, frame, paths.data(), results, counters);
     // The rays that leave the first hits along mirror and glass lobes go in packets too; the
     // rest of each chain follows one ray at a time (its numbers come from the pixel's stream,
@@ -142,7 +158,7 @@ void IgiIntegrator::gatherLightAtEdges(const Pixel* pixels, int count, std::uint
     thread_local std::vector<glm::vec3> directions, seen;
     marked.clear();
     for (int i = 0; i < count; ++i)
-        if (lightEdges_.contains(pixels[i].x, pixels[i].y)) marked.push_back(i);
+        if (lightEdges_->contains(pixels[i].x, pixels[i].y)) marked.push_back(i);
     if (marked.empty()) return;
     const std::size_t rays = marked.size() * std::size_t(k);
     px.resize(rays);

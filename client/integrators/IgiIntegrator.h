@@ -1,5 +1,7 @@
 #pragma once
 
+#include <memory>
+
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -29,6 +31,10 @@ class IgiIntegrator {
   public:
     IgiIntegrator(const TraceableScene& scene, const Lights& lights, const RenderSettings& settings,
                   const CameraModel& camera);
+    /// Renders `other`'s scene, lights and camera with `settings`, sharing its pixels at light
+    /// edges (a function of the lights and the camera only) where both gather there
+    /// (TileRenderer's first frame, whose settings differ in samples and VPLs only).
+    IgiIntegrator(const IgiIntegrator& other, const RenderSettings& settings);
 
     /// A pixel to shade: where it is in the image and its index (y * width + x).
     struct Pixel {
@@ -89,7 +95,8 @@ class IgiIntegrator {
     RenderSettings settings_;
     const CameraModel& camera_;
     EndPointShader shader_;
-    LightEdges lightEdges_;  ///< where gatherLightAtEdges works (empty: lightEdgeRays 0)
+    /// Where gatherLightAtEdges works (empty: lightEdgeRays 0); never null.
+    std::shared_ptr<const LightEdges> lightEdges_;
 };
 
 }  // namespace igi

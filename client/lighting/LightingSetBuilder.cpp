@@ -99,8 +99,8 @@ LightingSet LightingSetBuilder::assemble(std::uint32_t frame, std::uint32_t accu
     LightingSet set;
     // The first frame after a change is what a user sees while moving. It has the light paths
     // and the bound of the frames after it (Russian roulette past the paper's walk; with the
-    // compensation, the wider bound): less error than the paper's first frame for about its
-    // time, on every scene measured (docs/PERFORMANCE.md, "The first frame after a change").
+    // compensation, the wider bound), measured against earlier builds' first frames in
+    // docs/PERFORMANCE.md, "The first frame after a change".
     // What would restore the bound's cut (the compensation rays of the points without a glossy
     // lobe, and the second points the glossy ones shade) and the VPLs' photons cost rays and
     // time that one frame does not repay: they begin with the frames accumulated after it, so
